@@ -1,0 +1,19 @@
+"""Pure pool physics: table geometry, balls, racks, shots and the fixed-tick event engine.
+
+No I/O, no asyncio: the server, the rules, the tests and the benchmarks all drive it alone.
+"""
+
+from .balls import CUE, BallSet, MotionState
+from .params import DEFAULT_PARAMS, PhysicsParams
+from .rack import rack, rack_slots
+from .results import Event, EventKind, Frame, FrameSequence, ShotResult
+from .shot import MAX_SPEED, MAX_TIP, Shot
+from .simulate import DEFAULT_TICK, run_to_rest, simulate, step, strike
+from .table import BALL_MASS, BALL_RADIUS, Cushion, Pocket, Table
+
+__all__ = [
+    "BALL_MASS", "BALL_RADIUS", "CUE", "DEFAULT_PARAMS", "DEFAULT_TICK", "MAX_SPEED", "MAX_TIP",
+    "BallSet", "Cushion", "Event", "EventKind", "Frame", "FrameSequence", "MotionState",
+    "PhysicsParams", "Pocket", "Shot", "ShotResult", "Table", "rack", "rack_slots",
+    "run_to_rest", "simulate", "step", "strike",
+]

@@ -1,0 +1,148 @@
+"""The balls on a table: state per ball kept in parallel numpy arrays.
+
+Ball ids are 0 (the cue ball) to 15. A `BallSet` may hold any subset (9-ball uses 0-9);
+row `i` of every array belongs to ball `ids[i]`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from enum import IntEnum
+
+import numpy as np
+
+CUE = 0
+MAX_BALL_ID = 15
+
+
+class MotionState(IntEnum):
+    """What a ball is doing; decides which friction law moves it."""
+
+    STATIONARY = 0
+    SPINNING = 1  # in place, about the vertical axis only
+    SLIDING = 2  # the contact point slips on the cloth
+    ROLLING = 3  # no slip
+    POCKETED = 4
+
+
+@dataclass
+class BallSet:
+    """Mutable ball state. The engine's `step` advances it in place; `copy()` before keeping.
+
+    positions (N, 2) m; velocities (N, 2) m/s; spins (N, 3) rad/s (angular velocity, z up);
+    states (N,) MotionState; phases (N,) rad rolled (drives the sprite cel);
+    pockets (N,) pocket index for a pocketed ball, else -1.
+    """
+
+    ids: np.ndarray
+    positions: np.ndarray
+    velocities: np.ndarray
+    spins: np.ndarray
+    states: np.ndarray
+    phases: np.ndarray
+    pockets: np.ndarray
+
+    @classmethod
+    def place(cls, placement: Mapping[int, tuple[float, float]]) -> BallSet:
+        """Stationary balls at the given centres, ordered by id."""
+        if not placement:
+            raise ValueError("place needs at least one ball")
+        ids = sorted(placement)
+        if len(set(ids)) != len(ids) or ids[0] < 0 or ids[-1] > MAX_BALL_ID:
+            raise ValueError(f"ball ids must be distinct and within 0..{MAX_BALL_ID}")
+        n = len(ids)
+        positions = np.array([placement[i] for i in ids], dtype=np.float64).reshape(n, 2)
+        if not np.all(np.isfinite(positions)):
+            raise ValueError("ball positions must be finite")
+        return cls(
+            ids=np.array(ids, dtype=np.int64),
+            positions=positions,
+            velocities=np.zeros((n, 2)),
+            spins=np.zeros((n, 3)),
+            states=np.full(n, MotionState.STATIONARY, dtype=np.int64),
+            phases=np.zeros(n),
+            pockets=np.full(n, -1, dtype=np.int64),
+        )
+
+    def copy(self) -> BallSet:
+        return BallSet(*(a.copy() for a in (self.ids, self.positions, self.velocities,
+                                             self.spins, self.states, self.phases,
+                                             self.pockets)))
+
+    def __len__(self) -> int:
+        return len(self.ids)
+
+    def index(self, ball_id: int) -> int:
+        """Row of ball `ball_id`; KeyError when the set does not hold it."""
+        rows = np.flatnonzero(self.ids == ball_id)
+        if len(rows) == 0:
+            raise KeyError(ball_id)
+        return int(rows[0])
+
+    @property
+    def on_table(self) -> np.ndarray:
+        """(N,) bool: the ball has not been pocketed."""
+        return self.states != MotionState.POCKETED
+
+    @property
+    def moving(self) -> np.ndarray:
+        """(N,) bool: the ball translates (sliding or rolling)."""
+        return (self.states == MotionState.SLIDING) | (self.states == MotionState.ROLLING)
+
+    def at_rest(self) -> bool:
+        """No ball translates any more."""
+        return not bool(self.moving.any())
+
+    def position_of(self, ball_id: int) -> tuple[float, float]:
+        x, y = self.positions[self.index(ball_id)]
+        return (float(x), float(y))
+
+    def pocketed_ids(self) -> list[int]:
+        return [int(i) for i in self.ids[~self.on_table]]
+
+    def on_table_ids(self) -> list[int]:
+        return [int(i) for i in self.ids[self.on_table]]
+
+    def with_ball(self, ball_id: int, xy: tuple[float, float]) -> BallSet:
+        """A copy with ball `ball_id` stationary on the table at `xy` (spotting, ball in hand)."""
+        out = self.copy()
+        row = out.index(ball_id)
+        out.positions[row] = xy
+        out.velocities[row] = 0.0
+        out.spins[row] = 0.0
+        out.states[row] = MotionState.STATIONARY
+        out.pockets[row] = -1
+        return out
+
+    def kinetic_energy(self, mass: float, radius: float) -> float:
+        """Translational plus rotational kinetic energy of the balls on the table (J)."""
+        on = self.on_table
+        inertia = 0.4 * mass * radius * radius
+        return float(0.5 * mass * np.sum(self.velocities[on] ** 2)
+                     + 0.5 * inertia * np.sum(self.spins[on] ** 2))
+
+    def to_dict(self) -> dict:
+        """Exact plain data (floats as Python floats) for storage and bit-exact replay."""
+        return {
+            "ids": self.ids.tolist(),
+            "positions": self.positions.tolist(),
+            "velocities": self.velocities.tolist(),
+            "spins": self.spins.tolist(),
+            "states": self.states.tolist(),
+            "phases": self.phases.tolist(),
+            "pockets": self.pockets.tolist(),
+        }
+
+    @classmethod
+    def from_dict(cls, data: Mapping) -> BallSet:
+        n = len(data["ids"])
+        return cls(
+            ids=np.array(data["ids"], dtype=np.int64),
+            positions=np.array(data["positions"], dtype=np.float64).reshape(n, 2),
+            velocities=np.array(data["velocities"], dtype=np.float64).reshape(n, 2),
+            spins=np.array(data["spins"], dtype=np.float64).reshape(n, 3),
+            states=np.array(data["states"], dtype=np.int64),
+            phases=np.array(data["phases"], dtype=np.float64),
+            pockets=np.array(data["pockets"], dtype=np.int64),
+        )

@@ -1,0 +1,36 @@
+"""Indices and codes shared by the compiled kernels (numba treats module globals as constants)."""
+
+# MotionState values (see balls.MotionState)
+STATIONARY = 0
+SPINNING = 1
+SLIDING = 2
+ROLLING = 3
+POCKETED = 4
+
+# Event kind codes (see results.EVENT_CODES)
+EV_STRIKE = 0
+EV_BALL = 1
+EV_CUSHION = 2
+EV_JAW = 3
+EV_POCKET = 4
+EV_REST = 5
+EV_NONE = -1
+
+# PhysicsParams.array() layout
+P_RADIUS = 0
+P_MASS = 1
+P_G = 2
+P_U_SLIDE = 3
+P_U_ROLL = 4
+P_U_SPIN = 5
+P_E_BALL = 6
+P_E_CUSHION = 7
+P_F_CUSHION = 8
+P_CELS = 9
+
+# Speeds below this (m/s) count as zero: far below anything a player can see.
+EPS_SPEED = 1e-9
+# Spin below this (rad/s) counts as zero.
+EPS_SPIN = 1e-7
+# A tick may resolve at most this many events; beyond it the tick stops early (no overlap).
+MAX_EVENTS_PER_TICK = 5000

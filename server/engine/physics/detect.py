@@ -1,0 +1,133 @@
+"""When does the next event happen? Times of impact for straight-line motion.
+
+Ball-ball (paper §2): with relative position d and velocity v the centres are 2R apart when
+A t^2 + B t + C = 0, A = v.v, B = 2 d.v, C = d.d - (2R)^2. Only approaching pairs (B < 0)
+can collide; an approaching pair that already touches or overlaps by round-off (C <= 0)
+collides now. The smaller root is taken in the cancellation-free form 2C / (-B + sqrt(disc)).
+A jaw is the same quadratic with R in place of 2R; a cushion and a pocket mouth are lines,
+so their times are linear.
+"""
+
+import math
+
+from numba import njit
+
+from .constants import (
+    EV_BALL,
+    EV_CUSHION,
+    EV_JAW,
+    EV_NONE,
+    EV_POCKET,
+    P_RADIUS,
+    POCKETED,
+    ROLLING,
+    SLIDING,
+)
+
+
+@njit(cache=True)
+def quadratic_contact_time(dx, dy, vx, vy, reach):
+    """Earliest t >= 0 at which |d + v t| = reach, for an approaching pair; inf if never."""
+    b = 2.0 * (dx * vx + dy * vy)
+    if b >= 0.0:
+        return math.inf
+    c = dx * dx + dy * dy - reach * reach
+    if c <= 0.0:
+        return 0.0
+    a = vx * vx + vy * vy
+    disc = b * b - 4.0 * a * c
+    if disc < 0.0:
+        return math.inf
+    return 2.0 * c / (-b + math.sqrt(disc))
+
+
+@njit(cache=True)
+def line_contact_time(px, py, vx, vy, qx, qy, nx, ny, offset):
+    """Earliest t >= 0 at which the signed distance (p + v t - q).n falls to `offset`."""
+    vn = vx * nx + vy * ny
+    if vn >= 0.0:
+        return math.inf
+    dist = (px - qx) * nx + (py - qy) * ny - offset
+    if dist <= 0.0:
+        return 0.0
+    return dist / -vn
+
+
+@njit(cache=True)
+def _moving(s):
+    return s == SLIDING or s == ROLLING
+
+
+@njit(cache=True)
+def earliest_event(pos, vel, st, n, horizon, cush, jaws, pockets, length, width, p):
+    """The first collision of any kind within `horizon` seconds.
+
+    Returns (time, kind, a, b): kind is EV_NONE when nothing happens in time; a is a ball
+    row; b is the other ball's row, or the cushion / jaw / pocket index.
+    """
+    radius = p[P_RADIUS]
+    best_t = math.inf
+    kind = EV_NONE
+    best_a = -1
+    best_b = -1
+    for i in range(n):
+        si = st[i]
+        if not _moving(si):
+            continue
+        px, py = pos[i, 0], pos[i, 1]
+        vx, vy = vel[i, 0], vel[i, 1]
+        limit = min(best_t, horizon)
+        # Balls: pairs with a stationary partner are found here, moving pairs once (i < j).
+        for j in range(n):
+            if j == i or st[j] == POCKETED:
+                continue
+            if _moving(st[j]) and j < i:
+                continue
+            dx = px - pos[j, 0]
+            dy = py - pos[j, 1]
+            rvx = vx - vel[j, 0]
+            rvy = vy - vel[j, 1]
+            gap = math.hypot(dx, dy) - 2.0 * radius
+            if gap > math.hypot(rvx, rvy) * limit + 1e-9:
+                continue
+            t = quadratic_contact_time(dx, dy, rvx, rvy, 2.0 * radius)
+            if t <= limit and t < best_t:
+                best_t, kind, best_a, best_b = t, EV_BALL, i, j
+                limit = t
+        # Rails, jaws and pockets only matter near the edge of the bed.
+        reach = math.hypot(vx, vy) * limit + 1e-9
+        if (2.0 * radius + reach < px < length - 2.0 * radius - reach
+                and 2.0 * radius + reach < py < width - 2.0 * radius - reach):
+            continue
+        for c in range(cush.shape[0]):
+            t = line_contact_time(px, py, vx, vy, cush[c, 0], cush[c, 1], cush[c, 4],
+                                  cush[c, 5], radius)
+            if t <= limit and t < best_t:
+                # The contact point must lie on the segment; past its ends the jaw is hit.
+                cx = px + vx * t - cush[c, 0]
+                cy = py + vy * t - cush[c, 1]
+                tx = cush[c, 2] - cush[c, 0]
+                ty = cush[c, 3] - cush[c, 1]
+                along = (cx * tx + cy * ty) / (tx * tx + ty * ty)
+                if 0.0 <= along <= 1.0:
+                    best_t, kind, best_a, best_b = t, EV_CUSHION, i, c
+                    limit = t
+        for k in range(jaws.shape[0]):
+            t = quadratic_contact_time(px - jaws[k, 0], py - jaws[k, 1], vx, vy, radius)
+            if t <= limit and t < best_t:
+                best_t, kind, best_a, best_b = t, EV_JAW, i, k
+                limit = t
+        for k in range(pockets.shape[0]):
+            # Crossing the mouth line outward (offset 0 along -outward normal).
+            nx, ny = -pockets[k, 4], -pockets[k, 5]
+            t = line_contact_time(px, py, vx, vy, pockets[k, 0], pockets[k, 1], nx, ny, 0.0)
+            if t <= limit and t < best_t:
+                cx = px + vx * t - pockets[k, 0]
+                cy = py + vy * t - pockets[k, 1]
+                tx = pockets[k, 2] - pockets[k, 0]
+                ty = pockets[k, 3] - pockets[k, 1]
+                along = (cx * tx + cy * ty) / (tx * tx + ty * ty)
+                if -1e-9 <= along <= 1.0 + 1e-9:
+                    best_t, kind, best_a, best_b = t, EV_POCKET, i, k
+                    limit = t
+    return best_t, kind, best_a, best_b

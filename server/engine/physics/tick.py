@@ -1,0 +1,154 @@
+"""The fixed-tick loop: inside each tick, advance to the earliest event, resolve it, repeat.
+
+A sub-step ends at the earliest of: the end of the tick, the next change of a ball's
+friction law, the next collision. Events resolved at the same instant (a rack's touching
+balls) follow one another at zero time; a pair that is already separating is no event, so
+the cascade ends. Events are written into caller-owned arrays.
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .constants import (
+    EV_BALL,
+    EV_CUSHION,
+    EV_JAW,
+    EV_NONE,
+    EV_POCKET,
+    EV_REST,
+    MAX_EVENTS_PER_TICK,
+    P_CELS,
+    P_RADIUS,
+    POCKETED,
+    ROLLING,
+    SLIDING,
+)
+from .detect import earliest_event
+from .motion import advance, finish_transition, transition_time
+from .resolve import ball_ball, cushion, jaw, pocket
+
+
+@njit(cache=True)
+def _record(events, n_ev, time, kind, a, b, speed, target):
+    events[n_ev, 0] = time
+    events[n_ev, 1] = kind
+    events[n_ev, 2] = a
+    events[n_ev, 3] = b
+    events[n_ev, 4] = speed
+    events[n_ev, 5] = target
+    return n_ev + 1
+
+
+@njit(cache=True)
+def run_tick(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width,
+             p, dt, t0, events, n_ev):
+    """Advance the table by one tick of length dt starting at time t0.
+
+    events: (E, 6) float64 rows (time, kind, row a, row b, speed, target); n_ev rows are
+    used. Returns (n_ev, stalled): stalled is True when the tick hit MAX_EVENTS_PER_TICK
+    and stopped early (the balls are left where they are: no overlap).
+    """
+    n = pos.shape[0]
+    radius = p[P_RADIUS]
+    elapsed = 0.0
+    count = 0
+    while elapsed < dt:
+        remaining = dt - elapsed
+        horizon = remaining
+        for i in range(n):
+            tt = transition_time(vel, w, st, i, p)
+            if tt < horizon:
+                horizon = tt
+        t, kind, a, b = earliest_event(pos, vel, st, n, horizon, cush, jaws, pockets, length,
+                                       width, p)
+        if kind != EV_NONE:
+            advance(pos, vel, w, st, phase, n, t, p)
+            elapsed += t
+            now = t0 + elapsed
+            if kind == EV_BALL:
+                speed = ball_ball(pos, vel, w, st, a, b, p)
+                if speed > 0.0:
+                    n_ev = _record(events, n_ev, now, EV_BALL, a, b, speed, -1)
+            elif kind == EV_CUSHION:
+                speed = cushion(vel, w, st, a, b, cush, p)
+                if speed > 0.0:
+                    n_ev = _record(events, n_ev, now, EV_CUSHION, a, -1, speed, b)
+            elif kind == EV_JAW:
+                speed = jaw(pos, vel, w, st, a, b, jaws, p)
+                if speed > 0.0:
+                    n_ev = _record(events, n_ev, now, EV_JAW, a, -1, speed, b)
+            else:
+                speed = pocket(pos, vel, w, st, pocket_of, a, b, centers)
+                n_ev = _record(events, n_ev, now, EV_POCKET, a, -1, speed, b)
+            count += 1
+            if count >= MAX_EVENTS_PER_TICK:
+                return n_ev, True
+            continue
+        # No collision before the horizon: move there and finish any state change.
+        advance(pos, vel, w, st, phase, n, horizon, p)
+        if horizon >= remaining:
+            elapsed = dt
+        else:
+            elapsed += horizon
+        now = t0 + elapsed
+        for i in range(n):
+            if st[i] == SLIDING or st[i] == ROLLING:
+                if transition_time(vel, w, st, i, p) <= 1e-12 or _reached(vel, w, st, i, p,
+                                                                           horizon):
+                    if finish_transition(vel, w, st, i, radius):
+                        n_ev = _record(events, n_ev, now, EV_REST, i, -1, 0.0, -1)
+    return n_ev, False
+
+
+@njit(cache=True)
+def _reached(vel, w, st, i, p, horizon):
+    # After advancing exactly to a transition, round-off can leave a sliver of slip or speed.
+    tt = transition_time(vel, w, st, i, p)
+    return tt <= 1e-9 * max(horizon, 1e-3)
+
+
+@njit(cache=True)
+def any_moving(st):
+    for s in st:
+        if s == SLIDING or s == ROLLING:
+            return True
+    return False
+
+
+@njit(cache=True)
+def cels_of(phase, st, out, p):
+    n_cels = int(p[P_CELS])
+    two_pi = 2.0 * math.pi
+    for i in range(phase.shape[0]):
+        turns = phase[i] / two_pi
+        out[i] = int(math.floor((turns - math.floor(turns)) * n_cels)) % n_cels
+
+
+@njit(cache=True)
+def run_ticks(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width,
+              p, dt, first_tick, max_ticks, events, n_ev, frame_pos, frame_cels, frame_on):
+    """Run ticks until every ball is at rest, `max_ticks` have run, or the event buffer is
+    nearly full. Each tick's end state is written to the frame arrays.
+
+    Returns (ticks_run, n_ev, stalls)."""
+    ticks = 0
+    stalls = 0
+    cap = events.shape[0]
+    while ticks < max_ticks and any_moving(st) and cap - n_ev > MAX_EVENTS_PER_TICK + 64:
+        t0 = (first_tick + ticks) * dt
+        n_ev, stalled = run_tick(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets,
+                                 centers, length, width, p, dt, t0, events, n_ev)
+        if stalled:
+            stalls += 1
+        frame_pos[ticks] = pos
+        cels_of(phase, st, frame_cels[ticks], p)
+        for i in range(st.shape[0]):
+            frame_on[ticks, i] = st[i] != POCKETED
+        ticks += 1
+    return ticks, n_ev, stalls
+
+
+def empty_events(capacity: int) -> np.ndarray:
+    return np.zeros((capacity, 6), dtype=np.float64)

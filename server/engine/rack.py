@@ -1,0 +1,87 @@
+"""Racks: the triangle for 8-ball and the diamond for 9-ball, with the cue ball on the head spot.
+
+Real racks are never perfect: each ball sits on a lattice slightly wider than a ball
+(0.05 mm) and is moved by a seeded jitter of at most 0.025 mm, so every neighbour gap lies
+in [0, 0.1 mm].
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .balls import BallSet
+from .table import Table
+
+LATTICE_GAP = 0.05e-3  # m added to the ball spacing
+JITTER = 0.025e-3  # m, largest seeded displacement of a ball
+
+SOLIDS = (1, 2, 3, 4, 5, 6, 7)
+STRIPES = (9, 10, 11, 12, 13, 14, 15)
+
+
+def _slots(rows: list[int], table: Table) -> list[tuple[float, float]]:
+    """Centres of a rack whose rows (apex first) have the given lengths, apex on the foot
+    spot and rows growing towards the foot cushion."""
+    d = 2 * table.ball_radius + LATTICE_GAP
+    fx, fy = table.foot_spot
+    out = []
+    for r, count in enumerate(rows):
+        x = fx + r * d * math.sqrt(3) / 2
+        for k in range(count):
+            y = fy + (k - (count - 1) / 2) * d
+            out.append((x, y))
+    return out
+
+
+def _eight_ball_order(rng: np.random.Generator) -> list[int]:
+    # slots: row0 [0], row1 [1,2], row2 [3,4,5], row3 [6..9], row4 [10..14]
+    solids, stripes = list(SOLIDS), list(STRIPES)
+    rng.shuffle(solids)
+    rng.shuffle(stripes)
+    order: list[int | None] = [None] * 15
+    order[4] = 8  # centre of the third row
+    if rng.random() < 0.5:
+        order[10], order[14] = solids.pop(), stripes.pop()
+    else:
+        order[10], order[14] = stripes.pop(), solids.pop()
+    rest = solids + stripes
+    rng.shuffle(rest)
+    for i in range(15):
+        if order[i] is None:
+            order[i] = rest.pop()
+    return [int(b) for b in order]  # type: ignore[arg-type]
+
+
+def _nine_ball_order(rng: np.random.Generator) -> list[int]:
+    # slots: row0 [0], row1 [1,2], row2 [3,4,5], row3 [6,7], row4 [8]
+    rest = [2, 3, 4, 5, 6, 7, 8]
+    rng.shuffle(rest)
+    order = [1, rest[0], rest[1], rest[2], 9, rest[3], rest[4], rest[5], rest[6]]
+    return [int(b) for b in order]
+
+
+def rack(game: str, table: Table, seed: int | None = 0) -> BallSet:
+    """A fresh rack for `game` ("eight_ball" or "nine_ball"), cue ball on the head spot."""
+    rng = np.random.default_rng(seed)
+    if game == "eight_ball":
+        slots = _slots([1, 2, 3, 4, 5], table)
+        order = _eight_ball_order(rng)
+    elif game == "nine_ball":
+        slots = _slots([1, 2, 3, 2, 1], table)
+        order = _nine_ball_order(rng)
+    else:
+        raise ValueError(f"unknown game {game!r}; choose eight_ball or nine_ball")
+    placement: dict[int, tuple[float, float]] = {0: table.head_spot}
+    for ball, (x, y) in zip(order, slots, strict=True):
+        angle = rng.uniform(0, 2 * math.pi)
+        shift = rng.uniform(0, JITTER)
+        placement[ball] = (x + shift * math.cos(angle), y + shift * math.sin(angle))
+    return BallSet.place(placement)
+
+
+def rack_slots(game: str, table: Table) -> list[tuple[float, float]]:
+    """The nominal (unjittered) rack centres, apex first; rules use them to re-spot."""
+    rows = [1, 2, 3, 4, 5] if game == "eight_ball" else [1, 2, 3, 2, 1]
+    return _slots(rows, table)

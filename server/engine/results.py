@@ -1,0 +1,119 @@
+"""What a simulated shot produces: events in time order, per-tick frames, the final state."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+from enum import StrEnum
+from typing import overload
+
+import numpy as np
+
+from .balls import BallSet
+
+
+class EventKind(StrEnum):
+    STRIKE = "strike"  # the cue hits the cue ball
+    BALL = "ball"  # two balls collide
+    CUSHION = "cushion"  # a ball hits a cushion
+    JAW = "jaw"  # a ball hits a pocket's point
+    POCKET = "pocket"  # a ball drops
+    REST = "rest"  # a ball stops translating
+
+
+# Kind codes used inside the compiled kernels, in the order of EventKind.
+EVENT_CODES: tuple[EventKind, ...] = tuple(EventKind)
+
+
+@dataclass(frozen=True)
+class Event:
+    """One thing that happened during a shot.
+
+    time: seconds since the strike (or since the start of the tick for `step`).
+    kind: one of "strike", "ball", "cushion", "jaw", "pocket", "rest".
+    ids: the ball ids involved (two for "ball", one otherwise).
+    speed: impact speed in m/s (relative normal speed for "ball", normal speed into the
+        cushion or jaw, the ball's speed for "strike" and "pocket", 0 for "rest").
+    target: the cushion, jaw or pocket index (into `Table.cushions`, `Table.jaws`,
+        `Table.pockets`) for those kinds, else -1.
+    """
+
+    time: float
+    kind: str
+    ids: tuple[int, ...]
+    speed: float
+    target: int = -1
+
+
+@dataclass(frozen=True)
+class Frame:
+    """The table at the end of one tick: what the client draws.
+
+    positions (N, 2) m, cels (N,) sprite cel index, on_table (N,) bool; rows follow
+    `ShotResult.ids`. A pocketed ball's position is its pocket's centre.
+    """
+
+    tick: int
+    time: float
+    positions: np.ndarray
+    cels: np.ndarray
+    on_table: np.ndarray
+
+
+class FrameSequence(Sequence[Frame]):
+    """Frames stored as three stacked arrays; `Frame` views are made on access."""
+
+    def __init__(self, tick: float, positions: np.ndarray, cels: np.ndarray,
+                 on_table: np.ndarray) -> None:
+        self.tick = tick
+        self.positions = positions  # (T, N, 2)
+        self.cels = cels  # (T, N)
+        self.on_table = on_table  # (T, N)
+
+    def __len__(self) -> int:
+        return len(self.positions)
+
+    @overload
+    def __getitem__(self, index: int) -> Frame: ...
+    @overload
+    def __getitem__(self, index: slice) -> list[Frame]: ...
+
+    def __getitem__(self, index: int | slice) -> Frame | list[Frame]:
+        if isinstance(index, slice):
+            return [self[i] for i in range(*index.indices(len(self)))]
+        n = len(self)
+        if index < 0:
+            index += n
+        if not 0 <= index < n:
+            raise IndexError(index)
+        return Frame(index + 1, (index + 1) * self.tick, self.positions[index],
+                     self.cels[index], self.on_table[index])
+
+    def __iter__(self) -> Iterator[Frame]:
+        for i in range(len(self)):
+            yield self[i]
+
+
+@dataclass(frozen=True)
+class ShotResult:
+    """A shot simulated to rest: `frames` (one per tick), `events` (time order), `final`."""
+
+    ids: np.ndarray
+    frames: FrameSequence
+    events: list[Event]
+    final: BallSet
+
+    @property
+    def duration(self) -> float:
+        return len(self.frames) * self.frames.tick
+
+    def first_contact(self) -> int | None:
+        """Id of the first ball the cue ball touched, or None."""
+        for e in self.events:
+            if e.kind == EventKind.BALL and 0 in e.ids:
+                return next(i for i in e.ids if i != 0)
+        return None
+
+    def pocketed(self) -> list[int]:
+        """Ids pocketed during the shot, in the order they dropped."""
+        return [e.ids[0] for e in self.events if e.kind == EventKind.POCKET]

@@ -1,0 +1,134 @@
+"""The engine's two doors: `simulate` runs a whole shot to rest, `step` advances a live table
+by one tick. Both trust their input (the room validates a player's shot first) and are
+deterministic: the same table, balls and shot give the same result, bit for bit.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .balls import CUE, BallSet, MotionState
+from .params import DEFAULT_PARAMS, PhysicsParams
+from .physics.motion import classify
+from .physics.tick import empty_events, run_tick, run_ticks
+from .results import EVENT_CODES, Event, EventKind, FrameSequence, ShotResult
+from .shot import Shot
+from .table import Table
+
+DEFAULT_TICK = 1.0 / 120.0
+MAX_SHOT_SECONDS = 300.0  # no real shot comes close; a guard, not a rule
+_CHUNK_TICKS = 2048
+_EVENT_CAPACITY = 16384
+
+
+class _Geometry:
+    """The table as the arrays the kernels take, built once per Table."""
+
+    __slots__ = ("cushions", "jaws", "pockets", "centers", "length", "width")
+
+    def __init__(self, table: Table) -> None:
+        self.cushions = table.cushion_array()
+        self.jaws = table.jaw_array()
+        self.pockets = table.pocket_array()
+        self.centers = table.pocket_centers()
+        self.length = float(table.length)
+        self.width = float(table.width)
+
+
+_geometry_cache: dict[Table, _Geometry] = {}
+
+
+def _geometry(table: Table) -> _Geometry:
+    geo = _geometry_cache.get(table)
+    if geo is None:
+        geo = _geometry_cache[table] = _Geometry(table)
+    return geo
+
+
+def strike(balls: BallSet, shot: Shot, params: PhysicsParams = DEFAULT_PARAMS,
+           time: float = 0.0) -> Event:
+    """Give the cue ball the shot's velocity and spin (in place); returns the strike event."""
+    row = balls.index(CUE)
+    if balls.states[row] == MotionState.POCKETED:
+        raise ValueError("the cue ball is not on the table")
+    (vx, vy), (wx, wy, wz) = shot.cue_ball_motion(params.radius)
+    balls.velocities[row] = (vx, vy)
+    balls.spins[row] = (wx, wy, wz)
+    classify(balls.velocities, balls.spins, balls.states, row, params.radius)
+    return Event(time, EventKind.STRIKE, (CUE,), float(shot.speed))
+
+
+def _events_from(rows: np.ndarray, ids: np.ndarray) -> list[Event]:
+    out = []
+    for time, code, a, b, speed, target in rows.tolist():
+        kind = EVENT_CODES[int(code)]
+        involved = (int(ids[int(a)]),) if b < 0 else (int(ids[int(a)]), int(ids[int(b)]))
+        out.append(Event(time, kind.value, involved, speed, int(target)))
+    return out
+
+
+def step(table: Table, balls: BallSet, tick: float = DEFAULT_TICK, time: float = 0.0,
+         params: PhysicsParams = DEFAULT_PARAMS) -> list[Event]:
+    """Advance `balls` in place by one tick; returns the tick's events (times from `time`)."""
+    geo = _geometry(table)
+    events = empty_events(_EVENT_CAPACITY)
+    n_ev, _ = run_tick(balls.positions, balls.velocities, balls.spins, balls.states,
+                       balls.phases, balls.pockets, geo.cushions, geo.jaws, geo.pockets,
+                       geo.centers, geo.length, geo.width, params.array(), float(tick),
+                       float(time), events, 0)
+    return _events_from(events[:n_ev], balls.ids)
+
+
+def simulate(table: Table, balls: BallSet, shot: Shot, tick: float = DEFAULT_TICK,
+             params: PhysicsParams = DEFAULT_PARAMS) -> ShotResult:
+    """Strike the cue ball and run ticks until every ball is at rest or pocketed.
+
+    `balls` is not modified. Residual spin about the vertical axis of a ball that has
+    stopped translating is dropped at the end (it cannot move the ball any more).
+    """
+    state = balls.copy()
+    events = [strike(state, shot, params)]
+    frames = run_to_rest(table, state, tick, params, events)
+    spinning = state.states == MotionState.SPINNING
+    state.spins[spinning] = 0.0
+    state.states[spinning] = MotionState.STATIONARY
+    return ShotResult(state.ids.copy(), frames, events, state)
+
+
+def run_to_rest(table: Table, state: BallSet, tick: float = DEFAULT_TICK,
+                params: PhysicsParams = DEFAULT_PARAMS,
+                events: list[Event] | None = None) -> FrameSequence:
+    """Advance `state` in place until no ball moves; appends events to `events`."""
+    if events is None:
+        events = []
+    geo = _geometry(table)
+    p = params.array()
+    n = len(state)
+    max_ticks = int(MAX_SHOT_SECONDS / tick)
+    chunks_pos, chunks_cels, chunks_on = [], [], []
+    ticks_done = 0
+    while ticks_done < max_ticks and state.moving.any():
+        size = min(_CHUNK_TICKS, max_ticks - ticks_done)
+        frame_pos = np.empty((size, n, 2))
+        frame_cels = np.empty((size, n), dtype=np.int64)
+        frame_on = np.empty((size, n), dtype=np.bool_)
+        ev = empty_events(_EVENT_CAPACITY)
+        ran, n_ev, _stalls = run_ticks(
+            state.positions, state.velocities, state.spins, state.states, state.phases,
+            state.pockets, geo.cushions, geo.jaws, geo.pockets, geo.centers, geo.length,
+            geo.width, p, float(tick), ticks_done, size, ev, 0, frame_pos, frame_cels,
+            frame_on)
+        chunks_pos.append(frame_pos[:ran])
+        chunks_cels.append(frame_cels[:ran])
+        chunks_on.append(frame_on[:ran])
+        events.extend(_events_from(ev[:n_ev], state.ids))
+        ticks_done += ran
+    return FrameSequence(tick, _stack(chunks_pos, (0, n, 2), np.float64),
+                         _stack(chunks_cels, (0, n), np.int64),
+                         _stack(chunks_on, (0, n), np.bool_))
+
+
+def _stack(chunks: list[np.ndarray], empty_shape: tuple[int, ...], dtype) -> np.ndarray:
+    if not chunks:
+        return np.empty(empty_shape, dtype=dtype)
+    return chunks[0] if len(chunks) == 1 else np.concatenate(chunks)
