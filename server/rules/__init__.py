@@ -1,0 +1,16 @@
+"""The rules of pool: 8-ball and 9-ball (WPA), practice, and matches (race to N).
+
+Pure Python over the physics engine's `ShotResult` events: no I/O, no asyncio. The names
+exported here are the contract with the room (see docs/rules.md).
+"""
+
+from .errors import IllegalActionError, RulesError
+from .game import Game
+from .match import Match
+from .options import GAME_KINDS, RuleOptions
+from .outcome import ANYWHERE, BEHIND_HEAD_STRING, Decision, Foul, Outcome
+
+__all__ = [
+    "ANYWHERE", "BEHIND_HEAD_STRING", "GAME_KINDS", "Decision", "Foul", "Game",
+    "IllegalActionError", "Match", "Outcome", "RuleOptions", "RulesError",
+]
