@@ -71,7 +71,8 @@ class Table:
         try:
             length, width = TABLE_SIZES[size]
         except KeyError:
-            raise ValueError(f"unknown table size {size!r}; choose one of {sorted(TABLE_SIZES)}")
+            raise ValueError(
+                f"unknown table size {size!r}; choose one of {sorted(TABLE_SIZES)}") from None
         return cls(length, width)
 
     def __post_init__(self) -> None:

@@ -23,9 +23,10 @@ from .constants import (
     ROLLING,
     SLIDING,
 )
+from .vector import norm as _norm
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def quadratic_contact_time(dx, dy, vx, vy, reach):
     """Earliest t >= 0 at which |d + v t| = reach, for an approaching pair; inf if never."""
     b = 2.0 * (dx * vx + dy * vy)
@@ -41,7 +42,7 @@ def quadratic_contact_time(dx, dy, vx, vy, reach):
     return 2.0 * c / (-b + math.sqrt(disc))
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def line_contact_time(px, py, vx, vy, qx, qy, nx, ny, offset):
     """Earliest t >= 0 at which the signed distance (p + v t - q).n falls to `offset`."""
     vn = vx * nx + vy * ny
@@ -53,7 +54,7 @@ def line_contact_time(px, py, vx, vy, qx, qy, nx, ny, offset):
     return dist / -vn
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _moving(s):
     return s == SLIDING or s == ROLLING
 
@@ -87,15 +88,15 @@ def earliest_event(pos, vel, st, n, horizon, cush, jaws, pockets, length, width,
             dy = py - pos[j, 1]
             rvx = vx - vel[j, 0]
             rvy = vy - vel[j, 1]
-            gap = math.hypot(dx, dy) - 2.0 * radius
-            if gap > math.hypot(rvx, rvy) * limit + 1e-9:
+            gap = _norm(dx, dy) - 2.0 * radius
+            if gap > _norm(rvx, rvy) * limit + 1e-9:
                 continue
             t = quadratic_contact_time(dx, dy, rvx, rvy, 2.0 * radius)
             if t <= limit and t < best_t:
                 best_t, kind, best_a, best_b = t, EV_BALL, i, j
                 limit = t
         # Rails, jaws and pockets only matter near the edge of the bed.
-        reach = math.hypot(vx, vy) * limit + 1e-9
+        reach = _norm(vx, vy) * limit + 1e-9
         if (2.0 * radius + reach < px < length - 2.0 * radius - reach
                 and 2.0 * radius + reach < py < width - 2.0 * radius - reach):
             continue

@@ -28,22 +28,23 @@ from .constants import (
     SPINNING,
     STATIONARY,
 )
+from .vector import norm as _norm
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def slip(vel, w, i, radius):
     """Velocity of ball i's contact point with the cloth."""
     return vel[i, 0] - radius * w[i, 1], vel[i, 1] + radius * w[i, 0]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def classify(vel, w, st, i, radius):
     """Set ball i's motion state from its velocity and spin (snapping tiny values to zero)."""
     if st[i] == POCKETED:
         return
     sx, sy = slip(vel, w, i, radius)
-    speed = math.hypot(vel[i, 0], vel[i, 1])
-    if math.hypot(sx, sy) > EPS_SPEED:
+    speed = _norm(vel[i, 0], vel[i, 1])
+    if _norm(sx, sy) > EPS_SPEED:
         st[i] = SLIDING
     elif speed > EPS_SPEED:
         st[i] = ROLLING
@@ -57,15 +58,21 @@ def classify(vel, w, st, i, radius):
         st[i] = SPINNING if abs(w[i, 2]) > EPS_SPIN else STATIONARY
 
 
-@njit(cache=True)
-def transition_time(vel, w, st, i, p):
-    """Time until ball i changes its friction law (inf when it will not)."""
-    if st[i] == SLIDING:
-        sx, sy = slip(vel, w, i, p[P_RADIUS])
-        return math.hypot(sx, sy) / (3.5 * p[P_U_SLIDE] * p[P_G])
-    if st[i] == ROLLING:
-        return math.hypot(vel[i, 0], vel[i, 1]) / (p[P_U_ROLL] * p[P_G])
+@njit(cache=True, inline="always")
+def transition_time(state, vx, vy, wx, wy, p):
+    """Time until a ball changes its friction law (inf when it will not). Scalars only:
+    array arguments cost a reference count per call in the hot loop."""
+    if state == SLIDING:
+        radius = p[P_RADIUS]
+        return _norm(vx - radius * wy, vy + radius * wx) / (3.5 * p[P_U_SLIDE] * p[P_G])
+    if state == ROLLING:
+        return _norm(vx, vy) / (p[P_U_ROLL] * p[P_G])
     return math.inf
+
+
+@njit(cache=True)
+def ball_transition_time(vel, w, st, i, p):
+    return transition_time(st[i], vel[i, 0], vel[i, 1], w[i, 0], w[i, 1], p)
 
 
 @njit(cache=True)
@@ -81,12 +88,12 @@ def advance(pos, vel, w, st, phase, n, dt, p):
         if s == SLIDING or s == ROLLING:
             pos[i, 0] += vx * dt
             pos[i, 1] += vy * dt
-            speed = math.hypot(vx, vy)
+            speed = _norm(vx, vy)
             if speed > 0.0:
                 phase[i] += (w[i, 1] * vx - w[i, 0] * vy) / speed * dt
         if s == SLIDING:
             sx, sy = slip(vel, w, i, radius)
-            u = math.hypot(sx, sy)
+            u = _norm(sx, sy)
             ax = -p[P_U_SLIDE] * p[P_G] * sx / u
             ay = -p[P_U_SLIDE] * p[P_G] * sy / u
             vel[i, 0] += ax * dt
@@ -94,7 +101,7 @@ def advance(pos, vel, w, st, phase, n, dt, p):
             w[i, 0] += 2.5 * ay / radius * dt
             w[i, 1] += -2.5 * ax / radius * dt
         elif s == ROLLING:
-            speed = math.hypot(vx, vy)
+            speed = _norm(vx, vy)
             new_speed = max(speed - p[P_U_ROLL] * p[P_G] * dt, 0.0)
             scale = new_speed / speed
             vel[i, 0] = vx * scale
@@ -109,7 +116,7 @@ def advance(pos, vel, w, st, phase, n, dt, p):
             st[i] = STATIONARY
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def finish_transition(vel, w, st, i, radius):
     """Ball i has reached the end of its sliding or rolling phase: snap it to the next one.
 
@@ -126,10 +133,10 @@ def finish_transition(vel, w, st, i, radius):
     return False
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def classify_after_slide(vel, w, st, i, radius):
     """The slip has reached zero: the ball rolls, or stops if it has no speed left (True)."""
-    if math.hypot(vel[i, 0], vel[i, 1]) > EPS_SPEED:
+    if _norm(vel[i, 0], vel[i, 1]) > EPS_SPEED:
         st[i] = ROLLING
         w[i, 0] = -vel[i, 1] / radius
         w[i, 1] = vel[i, 0] / radius

@@ -13,6 +13,7 @@ from numba import njit
 
 from .constants import P_E_BALL, P_E_CUSHION, P_F_CUSHION, P_RADIUS, POCKETED
 from .motion import classify
+from .vector import norm as _norm
 
 
 @njit(cache=True)
@@ -35,7 +36,7 @@ def ball_ball(pos, vel, w, st, i, j, p):
     return -rel / math.sqrt(d2)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def rebound(vel, w, st, i, nx, ny, p):
     """Bounce ball i off a surface with unit normal (nx, ny) pointing back at the ball;
     returns the normal impact speed (0 when the ball was moving away)."""
@@ -69,7 +70,7 @@ def cushion(vel, w, st, i, c, cush, p):
 def jaw(pos, vel, w, st, i, k, jaws, p):
     dx = pos[i, 0] - jaws[k, 0]
     dy = pos[i, 1] - jaws[k, 1]
-    d = math.hypot(dx, dy)
+    d = _norm(dx, dy)
     if d == 0.0:
         return 0.0
     return rebound(vel, w, st, i, dx / d, dy / d, p)
@@ -78,7 +79,7 @@ def jaw(pos, vel, w, st, i, k, jaws, p):
 @njit(cache=True)
 def pocket(pos, vel, w, st, pocket_of, i, k, centers):
     """Ball i drops into pocket k: it leaves play and rests at the pocket's centre."""
-    speed = math.hypot(vel[i, 0], vel[i, 1])
+    speed = _norm(vel[i, 0], vel[i, 1])
     st[i] = POCKETED
     pocket_of[i] = k
     pos[i, 0] = centers[k, 0]

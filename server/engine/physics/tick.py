@@ -30,7 +30,7 @@ from .motion import advance, finish_transition, transition_time
 from .resolve import ball_ball, cushion, jaw, pocket
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _record(events, n_ev, time, kind, a, b, speed, target):
     events[n_ev, 0] = time
     events[n_ev, 1] = kind
@@ -58,9 +58,10 @@ def run_tick(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, le
         remaining = dt - elapsed
         horizon = remaining
         for i in range(n):
-            tt = transition_time(vel, w, st, i, p)
-            if tt < horizon:
-                horizon = tt
+            if st[i] == SLIDING or st[i] == ROLLING:
+                tt = transition_time(st[i], vel[i, 0], vel[i, 1], w[i, 0], w[i, 1], p)
+                if tt < horizon:
+                    horizon = tt
         t, kind, a, b = earliest_event(pos, vel, st, n, horizon, cush, jaws, pockets, length,
                                        width, p)
         if kind != EV_NONE:
@@ -93,23 +94,18 @@ def run_tick(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, le
         else:
             elapsed += horizon
         now = t0 + elapsed
+        # After advancing exactly to a transition, round-off can leave a sliver of slip or
+        # speed: a ball within a nanosecond of its transition has reached it.
         for i in range(n):
-            if st[i] == SLIDING or st[i] == ROLLING:
-                if transition_time(vel, w, st, i, p) <= 1e-12 or _reached(vel, w, st, i, p,
-                                                                           horizon):
-                    if finish_transition(vel, w, st, i, radius):
-                        n_ev = _record(events, n_ev, now, EV_REST, i, -1, 0.0, -1)
+            if st[i] != SLIDING and st[i] != ROLLING:
+                continue
+            tt = transition_time(st[i], vel[i, 0], vel[i, 1], w[i, 0], w[i, 1], p)
+            if tt <= 1e-9 and finish_transition(vel, w, st, i, radius):
+                n_ev = _record(events, n_ev, now, EV_REST, i, -1, 0.0, -1)
     return n_ev, False
 
 
-@njit(cache=True)
-def _reached(vel, w, st, i, p, horizon):
-    # After advancing exactly to a transition, round-off can leave a sliver of slip or speed.
-    tt = transition_time(vel, w, st, i, p)
-    return tt <= 1e-9 * max(horizon, 1e-3)
-
-
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def any_moving(st):
     for s in st:
         if s == SLIDING or s == ROLLING:
