@@ -1,0 +1,48 @@
+"""The fouls, each a code for programs and a sentence for people."""
+
+from __future__ import annotations
+
+from .outcome import Foul
+from .words import ball
+
+LABELS = {
+    "scratch": "scratch",
+    "no_contact": "no ball hit",
+    "wrong_ball_first": "wrong ball first",
+    "no_rail": "no rail after contact",
+    "illegal_break": "illegal break",
+    "shot_clock": "time ran out",
+}
+
+
+def label(foul: Foul) -> str:
+    """Short words for the outcome line 'Foul: scratch.'."""
+    return LABELS.get(foul.code, foul.code.replace("_", " "))
+
+
+def scratch(name: str) -> Foul:
+    return Foul("scratch", f"{name} scratched: the cue ball went into a pocket.")
+
+
+def no_contact(name: str) -> Foul:
+    return Foul("no_contact", f"{name}'s cue ball did not touch any object ball.")
+
+
+def wrong_ball_first(name: str, hit: int, expected: str) -> Foul:
+    return Foul("wrong_ball_first",
+                f"{name} hit {ball(hit)} first; the first ball hit must be {expected}.")
+
+
+def no_rail(name: str) -> Foul:
+    return Foul("no_rail",
+                f"After {name}'s cue ball hit a ball, no ball was pocketed or reached a rail.")
+
+
+def illegal_break(name: str, to_rail: int) -> Foul:
+    return Foul("illegal_break",
+                f"{name}'s break pocketed no ball and drove only {to_rail} object "
+                f"ball{'s' if to_rail != 1 else ''} to a rail (four are needed).")
+
+
+def shot_clock(name: str) -> Foul:
+    return Foul("shot_clock", f"{name} ran out of time to shoot.")

@@ -1,0 +1,82 @@
+"""The facts a referee needs from a shot, read from the engine's events and final table.
+
+The engine is 2-D, so balls never leave the table: there is no "off the table" fact here,
+and no rule below acts on one.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from server.engine import CUE, BallSet, EventKind, ShotResult
+
+RAIL_KINDS = (EventKind.CUSHION.value, EventKind.JAW.value)  # a pocket point is a rail too
+
+
+@dataclass(frozen=True)
+class ShotFacts:
+    """What happened on one shot.
+
+    first_contact: the first object ball the cue ball touched, or None.
+    rail_after_contact: some ball reached a cushion (or a pocket point) after that contact.
+    pocketed: object balls that dropped, in the order they dropped.
+    pockets: pocket index (into `Table.pockets`) of each dropped ball, cue ball included.
+    scratch: the cue ball dropped.
+    balls_to_rail: distinct object balls that reached a cushion (counts for a legal break).
+    """
+
+    first_contact: int | None
+    rail_after_contact: bool
+    pocketed: tuple[int, ...]
+    pockets: dict[int, int]
+    scratch: bool
+    balls_to_rail: frozenset[int]
+
+    @property
+    def any_pocketed(self) -> bool:
+        return bool(self.pocketed)
+
+
+def shot_facts(before: BallSet, result: ShotResult) -> ShotFacts:
+    """Facts of `result`, a shot played from the table `before`.
+
+    Events give the order and the pockets; `result.final` is the authority on which balls
+    dropped (a ball off in `final` but on in `before` dropped even if no event says so).
+    """
+    first_contact: int | None = None
+    contact_seen = False
+    rail_after_contact = False
+    order: list[int] = []
+    pockets: dict[int, int] = {}
+    to_rail: set[int] = set()
+    for event in result.events:
+        if event.kind == EventKind.BALL.value:
+            if not contact_seen and CUE in event.ids:
+                others = [i for i in event.ids if i != CUE]
+                first_contact = others[0] if others else None
+                contact_seen = first_contact is not None
+        elif event.kind in RAIL_KINDS:
+            if contact_seen:
+                rail_after_contact = True
+            to_rail.update(i for i in event.ids if i != CUE)
+        elif event.kind == EventKind.POCKET.value:
+            for ball in event.ids:
+                if ball not in pockets:
+                    order.append(ball)
+                    pockets[ball] = event.target
+    was_on = set(before.on_table_ids())
+    now_off = set(result.final.pocketed_ids())
+    dropped = was_on & now_off
+    for ball in sorted(dropped - set(order)):
+        order.append(ball)
+        pockets[ball] = int(result.final.pockets[result.final.index(ball)])
+    order = [b for b in order if b in dropped]
+    pockets = {b: p for b, p in pockets.items() if b in dropped}
+    return ShotFacts(
+        first_contact=first_contact,
+        rail_after_contact=rail_after_contact,
+        pocketed=tuple(b for b in order if b != CUE),
+        pockets=pockets,
+        scratch=CUE in dropped,
+        balls_to_rail=frozenset(to_rail),
+    )
