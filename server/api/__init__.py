@@ -1,0 +1,1 @@
+"""The transport: HTTP routes, the room WebSocket and the message models."""

@@ -1,0 +1,92 @@
+"""HTTP routes: health, create/list/show rooms, take a seat."""
+
+from __future__ import annotations
+
+from fastapi import APIRouter, HTTPException, Request, status
+
+from server.rooms import ActionError, RoomRegistry
+from server.rooms.live import LiveRoom
+
+from .schemas import (
+    CreateRoom,
+    ErrorResponse,
+    Health,
+    Joined,
+    JoinRoom,
+    RoomCreated,
+    RoomDetail,
+    RoomList,
+    RoomSummary,
+)
+
+router = APIRouter()
+_ERRORS = {404: {"model": ErrorResponse}, 409: {"model": ErrorResponse},
+           422: {"description": "Validation error"}}
+
+
+def _registry(request: Request) -> RoomRegistry:
+    return request.app.state.registry
+
+
+def _room(request: Request, room_id: str) -> LiveRoom:
+    live = _registry(request).get(room_id)
+    if live is None:
+        raise HTTPException(404, {"code": "unknown_room", "message": "No such room."})
+    return live
+
+
+@router.get("/health", response_model=Health, tags=["meta"])
+async def health() -> dict:
+    return {"status": "ok"}
+
+
+@router.post("/api/rooms", status_code=status.HTTP_201_CREATED, response_model=RoomCreated,
+             responses={422: {"description": "Validation error"},
+                        503: {"model": ErrorResponse}}, tags=["rooms"])
+async def create_room(body: CreateRoom, request: Request) -> dict:
+    """Open a table. `practice` has one seat and no clock; join it next to sit down."""
+    settings = request.app.state.settings
+    clock = body.shot_clock
+    if clock is not None and 0 < clock < settings.min_shot_clock:
+        raise HTTPException(422, {"code": "bad_shot_clock", "message":
+                                  f"The shot clock is 0 (off) or at least "
+                                  f"{settings.min_shot_clock:g} seconds."})
+    try:
+        live = _registry(request).create(body.game, body.race_to, clock)
+    except ActionError as exc:
+        raise HTTPException(503, {"code": exc.code, "message": exc.message}) from None
+    room = live.room
+    return {"room_id": room.room_id, "game": room.game, "race_to": room.race_to,
+            "shot_clock": room.shot_clock, "seats": len(room.seats),
+            "url": f"/r/{room.room_id}"}
+
+
+@router.get("/api/rooms", response_model=RoomList, tags=["rooms"])
+async def list_rooms(request: Request) -> dict:
+    return {"rooms": [live.room.summary() for live in _registry(request).listing()]}
+
+
+@router.get("/api/rooms/{room_id}", response_model=RoomDetail, responses=_ERRORS,
+            tags=["rooms"])
+async def show_room(room_id: str, request: Request) -> dict:
+    """The room and its full public state (the WebSocket `state` body)."""
+    live = _room(request, room_id)
+    return {**live.room.summary(), "state": live.state_body()}
+
+
+@router.post("/api/rooms/{room_id}/join", response_model=Joined, responses=_ERRORS,
+             tags=["rooms"])
+async def join_room(room_id: str, body: JoinRoom, request: Request) -> dict:
+    """Take the first free seat. The token is shown once; keep it to connect and reconnect."""
+    live = _room(request, room_id)
+    try:
+        seat, token = live.room.join(body.name)
+    except ActionError as exc:
+        code = 409 if exc.code == "room_full" else 422
+        raise HTTPException(code, {"code": exc.code, "message": exc.message}) from None
+    live.on_joined(seat)
+    return {"room_id": room_id, "seat": seat, "token": token,
+            "name": live.room.name_of(seat)}
+
+
+__all__ = ["RoomSummary", "router"]

@@ -1,0 +1,75 @@
+"""HTTP request and response bodies (they make the OpenAPI schema)."""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal
+
+from pydantic import BaseModel, ConfigDict, Field
+
+GameKind = Literal["eight_ball", "nine_ball", "practice"]
+
+
+class Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
+
+
+class CreateRoom(Strict):
+    game: GameKind
+    race_to: Annotated[int, Field(ge=1, le=15)] = 1
+    shot_clock: Annotated[float, Field(ge=0, le=600,
+                                       description="seconds per shot; 0 = no clock")] | None = None
+
+
+class RoomCreated(BaseModel):
+    room_id: str
+    game: GameKind
+    race_to: int
+    shot_clock: float
+    seats: int
+    url: str
+
+
+class RoomSummary(BaseModel):
+    room_id: str
+    game: GameKind
+    race_to: int
+    shot_clock: float
+    seats: int
+    status: Literal["waiting", "playing", "finished"]
+    players: list[str | None]
+    spectators: int
+    score: list[int] | None
+    created_at: float
+
+
+class RoomList(BaseModel):
+    rooms: list[RoomSummary]
+
+
+class RoomDetail(RoomSummary):
+    state: dict
+
+
+class JoinRoom(Strict):
+    name: Annotated[str, Field(min_length=1, max_length=24,
+                               description="1-24 printable characters")]
+
+
+class Joined(BaseModel):
+    room_id: str
+    seat: int
+    token: str
+    name: str
+
+
+class Health(BaseModel):
+    status: Literal["ok"]
+
+
+class ErrorBody(BaseModel):
+    code: str
+    message: str
+
+
+class ErrorResponse(BaseModel):
+    detail: ErrorBody

@@ -1,0 +1,99 @@
+"""The room WebSocket: handshake checks, then one reader and one sender per connection.
+
+Everything is checked before `accept()` (Origin, room, token: close 1008). After that the
+reader validates each raw text frame (size, rate, JSON, schema) and hands it to the room;
+the sender drains the connection's bounded outbox. Either ending ends both.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import logging
+
+from fastapi import APIRouter, WebSocket
+from starlette.websockets import WebSocketState
+
+from server.config import Settings
+from server.rooms import RoomRegistry
+from server.rooms.connection import Connection, cancel_quietly
+from server.rooms.live import LiveRoom, encode
+from server.rooms.ratelimit import TokenBucket
+
+from .messages import BadMessage, parse_client_message
+from .origin import origin_allowed
+
+router = APIRouter()
+log = logging.getLogger(__name__)
+
+CLOSE_POLICY = 1008
+CLOSE_TOO_BIG = 1009
+
+
+@router.websocket("/ws/rooms/{room_id}")
+async def room_socket(websocket: WebSocket, room_id: str, token: str | None = None) -> None:
+    settings: Settings = websocket.app.state.settings
+    registry: RoomRegistry = websocket.app.state.registry
+    if not origin_allowed(websocket.headers.get("origin"), websocket.headers.get("host"),
+                          settings.allowed_origins):
+        await websocket.close(CLOSE_POLICY, "origin_not_allowed")
+        return
+    live = registry.get(room_id)
+    if live is None:
+        await websocket.close(CLOSE_POLICY, "unknown_room")
+        return
+    seat = None
+    if token is not None:
+        seat = live.room.seat_of(token)
+        if seat is None:
+            await websocket.close(CLOSE_POLICY, "bad_token")
+            return
+    await websocket.accept()
+    conn = Connection(websocket.send_text, seat, live.room.name_of(seat) if seat is not None
+                      else None, limit=settings.send_queue, send_timeout=settings.send_timeout)
+    live.attach(conn)
+    sender = asyncio.create_task(conn.run_sender())
+    reader = asyncio.create_task(_read(websocket, live, conn, settings))
+    try:
+        await asyncio.wait({sender, reader}, return_when=asyncio.FIRST_COMPLETED)
+    finally:
+        await cancel_quietly(reader)
+        await cancel_quietly(sender)
+        live.detach(conn)
+        if conn.close_code is not None and websocket.client_state == WebSocketState.CONNECTED:
+            with contextlib.suppress(Exception):
+                await asyncio.wait_for(websocket.close(conn.close_code, conn.close_reason),
+                                       settings.send_timeout)
+
+
+async def _read(websocket: WebSocket, live: LiveRoom, conn: Connection,
+                settings: Settings) -> None:
+    """Read raw frames until the peer leaves or breaks a limit (then `conn.close_code`)."""
+    bucket = TokenBucket(settings.rate_burst, settings.rate_per_second)
+    while True:
+        message = await websocket.receive()
+        if message["type"] == "websocket.disconnect":
+            return
+        text = message.get("text")
+        if text is None:
+            size = len(message.get("bytes") or b"")
+        else:
+            size = len(text.encode("utf-8", "surrogatepass")) if len(text) * 4 > \
+                settings.max_message else len(text)
+        if size > settings.max_message:
+            conn.close(CLOSE_TOO_BIG, "message_too_big")
+            return
+        if not bucket.take():
+            conn.close(CLOSE_POLICY, "rate_limited")
+            return
+        if text is None:
+            conn.push(encode({"type": "error", "code": "binary_not_supported",
+                              "message": "Send JSON text frames.", "ref": None}))
+            continue
+        try:
+            msg = parse_client_message(text)
+        except BadMessage as exc:
+            conn.push(encode({"type": "error", "code": exc.code, "message": exc.message,
+                              "ref": exc.ref}))
+            continue
+        live.handle(conn, msg)

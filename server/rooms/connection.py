@@ -1,0 +1,92 @@
+"""One client's outbox: a bounded queue drained by its own sender task.
+
+The room never awaits a client. `push` only appends; when the queue is full the oldest
+droppable message (a stale frame or aim relay) goes first, and a client that is still
+too far behind is closed with 1013 so it reconnects and gets a fresh `state`. Each send has
+a timeout, so a peer that stops reading is dropped instead of holding anything up.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import itertools
+from collections import deque
+from collections.abc import Awaitable, Callable
+from dataclasses import dataclass, field
+
+CLOSE_TOO_SLOW = 1013
+CLOSE_REPLACED = 4000
+
+_ids = itertools.count(1)
+
+
+@dataclass
+class Connection:
+    """A room member. `seat` is None for a spectator."""
+
+    send_text: Callable[[str], Awaitable[None]]
+    seat: int | None
+    name: str | None
+    limit: int = 64
+    send_timeout: float = 5.0
+    id: int = field(default_factory=lambda: next(_ids))
+    dropped: int = 0  # messages skipped because the client was behind
+    close_code: int | None = None  # set when the room wants this connection gone
+    close_reason: str = ""
+    _queue: deque[tuple[str, bool]] = field(default_factory=deque)
+    _wake: asyncio.Event = field(default_factory=asyncio.Event)
+
+    def push(self, text: str, droppable: bool = False) -> None:
+        """Queue a message without waiting; never blocks the caller."""
+        if self.close_code is not None:
+            return
+        if len(self._queue) >= self.limit and not self._drop_oldest_droppable():
+            if droppable:
+                self.dropped += 1
+                return
+            self.close(CLOSE_TOO_SLOW, "too_slow")
+            return
+        self._queue.append((text, droppable))
+        self._wake.set()
+
+    def _drop_oldest_droppable(self) -> bool:
+        for i, (_, droppable) in enumerate(self._queue):
+            if droppable:
+                del self._queue[i]
+                self.dropped += 1
+                return True
+        return False
+
+    def close(self, code: int, reason: str) -> None:
+        """Ask the sender to stop; the transport closes the socket with `code`."""
+        if self.close_code is None:
+            self.close_code = code
+            self.close_reason = reason
+            self._queue.clear()
+        self._wake.set()
+
+    @property
+    def pending(self) -> int:
+        return len(self._queue)
+
+    async def run_sender(self) -> None:
+        """Send queued messages in order until closed; returns when the room closed us."""
+        while True:
+            while not self._queue and self.close_code is None:
+                self._wake.clear()
+                await self._wake.wait()
+            if self.close_code is not None:
+                return
+            text, _ = self._queue.popleft()
+            try:
+                await asyncio.wait_for(self.send_text(text), self.send_timeout)
+            except TimeoutError:
+                self.close(CLOSE_TOO_SLOW, "too_slow")
+                return
+
+
+async def cancel_quietly(task: asyncio.Task) -> None:
+    task.cancel()
+    with contextlib.suppress(asyncio.CancelledError, Exception):
+        await task

@@ -1,0 +1,376 @@
+"""A room on the event loop: members, the shot stream, the shot clock and reconnection grace.
+
+`Room` decides; `LiveRoom` times and sends. Nothing here awaits a client: messages are
+pushed into each member's bounded outbox (`Connection`) and its own task sends them.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import logging
+import time
+from dataclasses import dataclass
+
+from server.api.messages import (
+    AnyClientMessage,
+    Chat,
+    Decide,
+    PlaceCue,
+    Shoot,
+)
+from server.config import Settings
+from server.engine import BallSet, Shot, simulate
+from server.rules import Outcome
+
+from .connection import CLOSE_REPLACED, Connection
+from .errors import ActionError
+from .observer import NullObserver, RoomObserver
+from .room import Room
+from .stream import plan_shot
+
+log = logging.getLogger(__name__)
+
+
+def encode(payload: dict) -> str:
+    return json.dumps(payload, separators=(",", ":"), allow_nan=False)
+
+
+@dataclass
+class _Timer:
+    seat: int
+    deadline: float  # loop time
+    handle: asyncio.TimerHandle
+
+
+class LiveRoom:
+    """Drives one `Room`: dispatches members' messages, streams shots, runs the clocks."""
+
+    def __init__(self, room: Room, settings: Settings,
+                 observer: RoomObserver | None = None) -> None:
+        self.room = room
+        self.settings = settings
+        self.observer: RoomObserver = observer or NullObserver()
+        self.members: dict[int, Connection] = {}
+        self.seq = 0
+        self.last_activity = time.monotonic()
+        self.ever_joined = False
+        self.sim_seconds: list[float] = []  # wall time of each simulate(), for measuring
+        self._clock: _Timer | None = None
+        self._grace: dict[int, _Timer] = {}
+        self._stream: asyncio.Task | None = None
+        self.closed = False
+
+    # ---- sending ----------------------------------------------------------------------
+
+    def broadcast(self, payload: dict, droppable: bool = False) -> None:
+        """Send to every member with the next room sequence number."""
+        self.seq += 1
+        text = encode({"type": payload["type"], "seq": self.seq,
+                       **{k: v for k, v in payload.items() if k != "type"}})
+        for conn in list(self.members.values()):
+            conn.push(text, droppable)
+
+    def relay(self, payload: dict, exclude: Connection) -> None:
+        """Send to everyone else, without a sequence number, droppable (aim relays)."""
+        text = encode(payload)
+        for conn in list(self.members.values()):
+            if conn is not exclude:
+                conn.push(text, True)
+
+    def reply(self, conn: Connection, payload: dict) -> None:
+        conn.push(encode(payload))
+
+    def state_body(self) -> dict:
+        return self.room.state_body(self.clock_info(), self.grace_info())
+
+    def state_payload(self) -> dict:
+        return {"type": "state", "seq": self.seq, **self.state_body()}
+
+    def broadcast_state(self) -> None:
+        self.broadcast({"type": "state", **self.state_body()})
+
+    def broadcast_presence(self) -> None:
+        self.broadcast({"type": "presence", "players": self.room.players_info(),
+                        "spectators": self.room.spectators, "grace": self.grace_info()})
+
+    # ---- membership -------------------------------------------------------------------
+
+    def touch(self) -> None:
+        self.last_activity = time.monotonic()
+
+    def on_joined(self, seat: int) -> None:
+        """A seat was taken over HTTP: tell the room; start the match clocks when full."""
+        self.touch()
+        self.ever_joined = True
+        if self.room.match is not None and self.room.phase != "rolling":
+            for i, s in enumerate(self.room.seats):
+                if s is not None and not s.connected:
+                    self._start_grace(i)
+            self._arm_clock(restart=True)
+        self.broadcast_state()
+        self.observer.room_changed(self.room)
+
+    def attach(self, conn: Connection) -> None:
+        """A member connected: replace an older socket of the same seat, send welcome+state."""
+        self.touch()
+        if conn.seat is not None:
+            for other in list(self.members.values()):
+                if other.seat == conn.seat:
+                    other.close(CLOSE_REPLACED, "replaced")
+                    del self.members[other.id]
+            seat = self.room.seats[conn.seat]
+            assert seat is not None
+            seat.connected = True
+            self._cancel_grace(conn.seat)
+        else:
+            self.room.spectators += 1
+        self.members[conn.id] = conn
+        self.reply(conn, {"type": "welcome", "protocol": 1, "room_id": self.room.room_id,
+                          "seat": conn.seat,
+                          "role": "spectator" if conn.seat is None else "player",
+                          "name": conn.name, "seq": self.seq,
+                          "tick_hz": self.settings.tick_hz,
+                          "frame_every": self.settings.frame_every,
+                          "server_time": time.time()})
+        self.reply(conn, self.state_payload())
+        self.broadcast_presence()
+
+    def detach(self, conn: Connection) -> None:
+        """A member's socket ended. A player keeps the seat for the grace period."""
+        self.touch()
+        if self.members.pop(conn.id, None) is None:
+            return  # already replaced by a newer socket
+        if conn.seat is None:
+            self.room.spectators -= 1
+        elif not any(m.seat == conn.seat for m in self.members.values()):
+            seat = self.room.seats[conn.seat]
+            assert seat is not None
+            seat.connected = False
+            self._start_grace(conn.seat)
+        if not self.closed:
+            self.broadcast_presence()
+
+    def close(self, code: int, reason: str) -> None:
+        """Stop clocks and the stream; ask every member's socket to close."""
+        self.closed = True
+        if self._stream is not None:
+            self._stream.cancel()
+        self._cancel_clock()
+        for seat in list(self._grace):
+            self._cancel_grace(seat)
+        for conn in list(self.members.values()):
+            conn.close(code, reason)
+        self.observer.room_closed(self.room)
+
+    def is_idle(self, now: float) -> bool:
+        if self.members:
+            return False
+        ttl = self.settings.idle_ttl if self.ever_joined else self.settings.waiting_ttl
+        return now - self.last_activity > ttl
+
+    # ---- messages from members ----------------------------------------------------------
+
+    def handle(self, conn: Connection, msg: AnyClientMessage) -> None:
+        """Act on one validated message; a refusal is an `error` reply, nothing changes."""
+        self.touch()
+        try:
+            self._dispatch(conn, msg)
+        except ActionError as exc:
+            self.reply(conn, {"type": "error", "code": exc.code, "message": exc.message,
+                              "ref": msg.type})
+
+    def _dispatch(self, conn: Connection, msg: AnyClientMessage) -> None:
+        room, seat = self.room, conn.seat
+        match msg.type:
+            case "ping":
+                self.reply(conn, {"type": "pong", "id": msg.id, "server_time": time.time()})
+            case "sync":
+                self.reply(conn, self.state_payload())
+            case "chat":
+                assert isinstance(msg, Chat)
+                text = "".join(ch if ch.isprintable() else " " for ch in msg.text).strip()
+                if not text:
+                    raise ActionError("bad_message", "text: the message is empty")
+                self.broadcast({"type": "chat", "seat": seat, "name": room.name_of(seat),
+                                "text": text, "at": time.time()})
+            case "aim":
+                room.check_aim(seat)
+                self.relay({"type": "aim", "seat": seat, "angle": msg.angle,
+                            "power": msg.power, "tip": list(msg.tip)}, exclude=conn)
+            case "shoot":
+                assert isinstance(msg, Shoot)
+                self._shoot(seat, msg)
+            case "place_cue":
+                assert isinstance(msg, PlaceCue)
+                room.place_cue(seat, msg.x, msg.y)
+                self._changed()
+            case "call":
+                room.call_pocket(seat, msg.pocket)
+                self._changed()
+            case "decide":
+                assert isinstance(msg, Decide)
+                room.decide(seat, msg.option)
+                self._changed()
+            case "push_out":
+                room.push_out(seat)
+                self._changed()
+            case "rerack":
+                room.rerack(seat)
+                self._changed()
+            case "concede":
+                self._conclude("concede", room.concede(seat))
+            case "rematch":
+                if room.vote_rematch(seat):
+                    for i, s in enumerate(room.seats):
+                        if s is not None and not s.connected:
+                            self._start_grace(i)
+                    self._arm_clock(restart=True)
+                    self.observer.room_changed(room)
+                self.broadcast_state()
+
+    def _changed(self) -> None:
+        self._arm_clock(restart=False)
+        self.broadcast_state()
+
+    # ---- shots ------------------------------------------------------------------------
+
+    def _shoot(self, seat: int | None, msg: Shoot) -> None:
+        try:
+            shot = Shot(msg.angle, msg.speed, tuple(msg.tip))
+        except ValueError as exc:
+            raise ActionError("bad_message", str(exc)) from None
+        shot_id, before = self.room.begin_shot(seat, shot)
+        assert seat is not None
+        self._cancel_clock()
+        self._stream = asyncio.get_running_loop().create_task(
+            self._play(seat, shot, shot_id, before))
+
+    async def _play(self, seat: int, shot: Shot, shot_id: int, before: BallSet) -> None:
+        room = self.room
+        assert room.match is not None
+        table = room.match.game.table
+        try:
+            started = time.perf_counter()
+            result = await asyncio.to_thread(simulate, table, before, shot)
+            self.sim_seconds.append(time.perf_counter() - started)
+            outcome = room.apply_shot(result)
+        except Exception:
+            log.exception("shot %s in room %s failed", shot_id, room.room_id)
+            room.abort_shot()
+            self._arm_clock(restart=True)
+            self.broadcast_state()
+            return
+        self.observer.shot_played(room, seat, shot, before, outcome)
+        loop = asyncio.get_running_loop()
+        start = loop.time()
+        pace = self.settings.pace
+        for timed in plan_shot(result, shot_id, self.settings.frame_every):
+            delay = start + timed.at / pace - loop.time()
+            if delay > 0:
+                await asyncio.sleep(delay)
+            room.show(timed)
+            self.broadcast(timed.payload, droppable=timed.droppable)
+        self._send_result(shot_id, "shot", outcome)
+        room.end_shot()
+        self._after_result()
+
+    def _send_result(self, shot_id: int | None, cause: str, outcome: Outcome) -> None:
+        match = self.room.match
+        assert match is not None
+        self.broadcast({"type": "shot_result", "shot": shot_id, "cause": cause,
+                        "outcome": outcome.to_dict(), "score": list(match.score),
+                        "match_over": match.over, "match_winner": match.winner})
+
+    def _after_result(self) -> None:
+        self._arm_clock(restart=True)
+        self.broadcast_state()
+        self.observer.room_changed(self.room)
+
+    def _conclude(self, cause: str, outcome: Outcome) -> None:
+        """A non-shot outcome (timeout, concession, forfeit): result, next rack, state."""
+        self._send_result(None, cause, outcome)
+        self.observer.outcome(self.room, cause, outcome)
+        self.room.after_outcome()
+        self._after_result()
+
+    # ---- shot clock ---------------------------------------------------------------------
+
+    def clock_info(self) -> dict | None:
+        if self._clock is None:
+            return None
+        remaining = max(0.0, self._clock.deadline - asyncio.get_running_loop().time())
+        return {"seat": self._clock.seat, "remaining": round(remaining, 2),
+                "limit": self.room.shot_clock}
+
+    def _arm_clock(self, restart: bool) -> None:
+        seat = self.room.acting_seat() if self.room.shot_clock > 0 else None
+        if seat is None:
+            self._cancel_clock()
+            return
+        if not restart and self._clock is not None and self._clock.seat == seat:
+            return
+        self._cancel_clock()
+        loop = asyncio.get_running_loop()
+        limit = self.room.shot_clock
+        self._clock = _Timer(seat, loop.time() + limit,
+                             loop.call_later(limit, self._on_clock, seat))
+
+    def _cancel_clock(self) -> None:
+        if self._clock is not None:
+            self._clock.handle.cancel()
+            self._clock = None
+
+    def _on_clock(self, seat: int) -> None:
+        self._clock = None
+        if self.room.acting_seat() != seat:
+            self._arm_clock(restart=True)
+            return
+        try:
+            outcome = self.room.timeout(seat)
+        except ActionError:
+            log.warning("shot clock timeout refused in room %s", self.room.room_id)
+            return
+        self._conclude("timeout", outcome)
+
+    # ---- reconnection grace ---------------------------------------------------------------
+
+    def grace_info(self) -> list[dict]:
+        if not self._grace:
+            return []
+        now = asyncio.get_running_loop().time()
+        return [{"seat": t.seat, "remaining": round(max(0.0, t.deadline - now), 2)}
+                for t in sorted(self._grace.values(), key=lambda t: t.seat)]
+
+    def _start_grace(self, seat: int) -> None:
+        match = self.room.match
+        if self.room.practice or match is None or match.over or seat in self._grace:
+            return
+        loop = asyncio.get_running_loop()
+        grace = self.settings.grace
+        self._grace[seat] = _Timer(seat, loop.time() + grace,
+                                   loop.call_later(grace, self._on_grace, seat))
+
+    def _cancel_grace(self, seat: int) -> None:
+        timer = self._grace.pop(seat, None)
+        if timer is not None:
+            timer.handle.cancel()
+
+    def _on_grace(self, seat: int) -> None:
+        timer = self._grace.get(seat)
+        seat_info = self.room.seats[seat]
+        if timer is None or seat_info is None or seat_info.connected:
+            self._grace.pop(seat, None)
+            return
+        match = self.room.match
+        if match is None or match.over:
+            self._grace.pop(seat, None)
+            return
+        if self.room.phase == "rolling":  # let the shot finish first
+            timer.handle = asyncio.get_running_loop().call_later(0.2, self._on_grace, seat)
+            return
+        del self._grace[seat]
+        outcome = self.room.forfeit(seat, f"{seat_info.name} left the table and did not "
+                                    "come back.")
+        self._conclude("forfeit", outcome)
+        self._start_grace(seat)  # if the match goes on, the next frame is at stake

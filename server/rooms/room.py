@@ -1,0 +1,309 @@
+"""A room as a synchronous state machine: seats, the match and what is shown now.
+
+No I/O and no clocks of its own (times are passed in): `LiveRoom` drives it from the event
+loop and sends what it returns. Every refused action raises `ActionError` and changes
+nothing; rules refusals keep the rules' own codes.
+"""
+
+from __future__ import annotations
+
+import secrets
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from server.engine import BallSet, Shot, ShotResult
+from server.rules import GAME_KINDS, Match, Outcome, RulesError
+
+from .errors import ActionError
+from .stream import BallRow, Timed, frame_rows
+from .tokens import hash_token, new_token, token_matches
+
+WAITING, AIMING, ROLLING, OVER = "waiting", "aiming", "rolling", "over"
+MAX_NAME = 24
+
+
+@dataclass
+class Seat:
+    name: str
+    token_hash: str
+    connected: bool = False
+
+
+@dataclass
+class ShotInProgress:
+    """The shot being streamed: what a member joining now is shown."""
+
+    id: int
+    seat: int
+    match_before: dict  # the match as it was when the shot was struck
+    balls: list[BallRow]
+    ticks: int = 0  # last tick of the shot (0 while it is being simulated)
+    tick: int = 0  # the tick shown now
+    outcome: Outcome | None = None
+
+
+@dataclass
+class Room:
+    """One table: `game` kind, seats (one for practice), the match once every seat is taken."""
+
+    room_id: str
+    game: str
+    race_to: int = 1
+    shot_clock: float = 60.0
+    seed: int = field(default_factory=lambda: secrets.randbelow(2**31))
+    created_at: float = 0.0
+    seats: list[Seat | None] = field(init=False)
+    match: Match | None = field(default=None, init=False)
+    shot: ShotInProgress | None = field(default=None, init=False)
+    shots_played: int = field(default=0, init=False)
+    rematch_votes: set[int] = field(default_factory=set, init=False)
+    spectators: int = field(default=0, init=False)
+    _cels: dict[int, int] = field(default_factory=dict, init=False)
+
+    def __post_init__(self) -> None:
+        if self.game not in GAME_KINDS:
+            raise ValueError(f"unknown game {self.game!r}")
+        self.seats = [None] if self.practice else [None, None]
+        if self.practice:
+            self.shot_clock = 0.0
+            self.race_to = 1
+
+    # ---- seats -----------------------------------------------------------------------
+
+    @property
+    def practice(self) -> bool:
+        return self.game == "practice"
+
+    def join(self, name: str) -> tuple[int, str]:
+        """Take the first free seat; returns (seat, token). Starts the match when full."""
+        clean = name.strip()
+        if not 1 <= len(clean) <= MAX_NAME or not clean.isprintable():
+            raise ActionError("bad_name", f"A name is 1 to {MAX_NAME} printable characters.")
+        free = next((i for i, s in enumerate(self.seats) if s is None), None)
+        if free is None:
+            raise ActionError("room_full", "Both seats are taken." if len(self.seats) == 2
+                              else "This practice table has one seat and it is taken.")
+        token = new_token()
+        self.seats[free] = Seat(clean, hash_token(token))
+        if all(self.seats):
+            self.match = Match(self.game, self.player_names(), race_to=self.race_to,
+                               seed=self.seed)
+        return free, token
+
+    def seat_of(self, token: str) -> int | None:
+        """The seat this token opens, or None. Compares every seat in constant time."""
+        found = None
+        for i, seat in enumerate(self.seats):
+            if seat is not None and token_matches(token, seat.token_hash):
+                found = i
+        return found
+
+    def player_names(self) -> tuple[str, ...]:
+        return tuple(s.name for s in self.seats if s is not None)
+
+    def name_of(self, seat: int | None) -> str:
+        if seat is None:
+            return "spectator"
+        s = self.seats[seat]
+        return s.name if s else f"seat {seat}"
+
+    def players_info(self) -> list[dict]:
+        return [{"seat": i, "name": s.name, "connected": s.connected}
+                for i, s in enumerate(self.seats) if s is not None]
+
+    # ---- what is shown ----------------------------------------------------------------
+
+    @property
+    def phase(self) -> str:
+        if self.match is None:
+            return WAITING
+        if self.shot is not None:
+            return ROLLING
+        if self.match.over:
+            return OVER
+        return AIMING
+
+    @property
+    def status(self) -> str:
+        phase = self.phase
+        return {WAITING: "waiting", OVER: "finished"}.get(phase, "playing")
+
+    def acting_seat(self) -> int | None:
+        """Who the match waits for: the seat of a pending decision, else the turn."""
+        if self.phase != AIMING or self.match is None:
+            return None
+        decision = self.match.game.decision
+        return decision.seat if decision is not None else self.match.game.turn
+
+    def summary(self) -> dict:
+        return {"room_id": self.room_id, "game": self.game, "race_to": self.race_to,
+                "shot_clock": self.shot_clock, "seats": len(self.seats),
+                "status": self.status,
+                "players": [s.name if s else None for s in self.seats],
+                "spectators": self.spectators,
+                "score": list(self.match.score) if self.match else None,
+                "created_at": self.created_at}
+
+    def resting_balls(self) -> list[BallRow]:
+        if self.match is None:
+            return []
+        balls: BallSet = self.match.game.balls
+        cels = np.array([self._cels.get(int(i), 0) for i in balls.ids.tolist()], dtype=int)
+        return frame_rows(balls.ids, balls.positions, cels, balls.on_table)
+
+    def table_dict(self) -> dict:
+        from server.engine import Table
+
+        table = self.match.game.table if self.match else Table.pool("9ft")
+        return table.to_dict()
+
+    def state_body(self, clock: dict | None, grace: list[dict]) -> dict:
+        """The `state` message without `type` and `seq`."""
+        shot = self.shot
+        if shot is not None:
+            match_state = shot.match_before
+            balls = shot.balls
+            shot_info = {"id": shot.id, "seat": shot.seat, "tick": shot.tick,
+                         "ticks": shot.ticks}
+        else:
+            match_state = self.match.public_state() if self.match else None
+            balls = self.resting_balls()
+            shot_info = None
+        room = {k: v for k, v in self.summary().items() if k not in ("score", "created_at")}
+        room["players"] = self.players_info()
+        room["rematch"] = sorted(self.rematch_votes)
+        return {"room": room, "phase": self.phase, "table": self.table_dict(), "balls": balls,
+                "shot": shot_info, "clock": clock, "grace": grace, "match": match_state}
+
+    # ---- actions ----------------------------------------------------------------------
+
+    def _require_player(self, seat: int | None) -> Match:
+        if seat is None:
+            raise ActionError("spectator", "Spectators can watch and chat, not play.")
+        if self.match is None:
+            raise ActionError("not_started", "Waiting for the other player to join.")
+        if self.shot is not None:
+            raise ActionError("balls_moving", "Wait until the balls stop.")
+        if self.match.over:
+            raise ActionError("match_over", "The match is over; ask for a rematch.")
+        return self.match
+
+    def begin_shot(self, seat: int | None, shot: Shot) -> tuple[int, BallSet]:
+        """Check that `seat` may shoot now and mark the table busy; returns (shot id, balls).
+
+        The caller simulates the shot from the returned copy, then calls `apply_shot`.
+        """
+        match = self._require_player(seat)
+        with _rules():
+            match.game.check_shot(seat)
+        self.shots_played += 1
+        self.rematch_votes.clear()
+        self.shot = ShotInProgress(self.shots_played, seat, match.public_state(),
+                                   self.resting_balls())
+        return self.shots_played, match.game.balls.copy()
+
+    def apply_shot(self, result: ShotResult) -> Outcome:
+        """Judge the simulated shot now (the stream shows it afterwards)."""
+        assert self.shot is not None and self.match is not None
+        with _rules():
+            outcome = self.match.apply(self.shot.seat, result)
+        self.shot.ticks = len(result.frames)
+        self.shot.outcome = outcome
+        return outcome
+
+    def abort_shot(self) -> None:
+        self.shot = None
+
+    def show(self, timed: Timed) -> None:
+        """The stream has reached `timed`: remember what a member joining now must see."""
+        if self.shot is not None and timed.balls is not None:
+            self.shot.balls = timed.balls
+            self.shot.tick = timed.tick
+            self._cels.update((row[0], row[3]) for row in timed.balls)
+
+    def end_shot(self) -> None:
+        self.shot = None
+        self.after_outcome()
+
+    def after_outcome(self) -> None:
+        """Rack the next game when one ended and the match goes on."""
+        match = self.match
+        if match is not None and match.game.over and not match.over:
+            match.next_game()
+            self._cels.clear()
+
+    def place_cue(self, seat: int | None, x: float, y: float) -> None:
+        match = self._require_player(seat)
+        with _rules():
+            match.game.place_cue(seat, x, y)
+
+    def call_pocket(self, seat: int | None, pocket: int) -> None:
+        match = self._require_player(seat)
+        with _rules():
+            match.game.call_pocket(seat, pocket)
+
+    def decide(self, seat: int | None, option: str) -> None:
+        match = self._require_player(seat)
+        with _rules():
+            match.game.decide(seat, option)
+
+    def push_out(self, seat: int | None) -> None:
+        match = self._require_player(seat)
+        with _rules():
+            match.game.declare_push_out(seat)
+
+    def rerack(self, seat: int | None) -> None:
+        match = self._require_player(seat)
+        if not self.practice:
+            raise ActionError("not_practice", "Only a practice table can be racked again.")
+        with _rules():
+            match.game.rerack()
+        self._cels.clear()
+
+    def check_aim(self, seat: int | None) -> None:
+        match = self._require_player(seat)
+        if seat != self.acting_seat() and not self.practice:
+            raise ActionError("not_your_turn", f"It is {self.name_of(match.game.turn)}'s "
+                              "turn.")
+
+    def concede(self, seat: int | None) -> Outcome:
+        match = self._require_player(seat)
+        if self.practice:
+            raise ActionError("not_allowed", "There is nothing to concede in practice.")
+        with _rules():
+            return match.concede(seat)
+
+    def timeout(self, seat: int) -> Outcome:
+        match = self._require_player(seat)
+        with _rules():
+            return match.timeout(seat)
+
+    def forfeit(self, seat: int, reason: str) -> Outcome:
+        match = self._require_player(seat)
+        with _rules():
+            return match.forfeit(seat, reason)
+
+    def vote_rematch(self, seat: int | None) -> bool:
+        """Record a rematch request; True when every seat asked and a new match began."""
+        if seat is None:
+            raise ActionError("spectator", "Spectators can watch and chat, not play.")
+        if self.match is None or not self.match.over:
+            raise ActionError("match_not_over", "A rematch can start once the match is over.")
+        self.rematch_votes.add(seat)
+        if len(self.rematch_votes) < len(self.seats):
+            return False
+        self.match.rematch()
+        self.rematch_votes.clear()
+        self._cels.clear()
+        return True
+
+
+@contextmanager
+def _rules() -> Iterator[None]:
+    try:
+        yield
+    except RulesError as exc:
+        raise ActionError(exc.code, exc.message) from None
