@@ -102,6 +102,7 @@ class ShotResult:
     frames: FrameSequence
     events: list[Event]
     final: BallSet
+    stalled_ticks: int = 0  # ticks cut short by the per-tick event bound (never seen in play)
 
     @property
     def duration(self) -> float:

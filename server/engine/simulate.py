@@ -55,7 +55,7 @@ def strike(balls: BallSet, shot: Shot, params: PhysicsParams = DEFAULT_PARAMS,
     balls.velocities[row] = (vx, vy)
     balls.spins[row] = (wx, wy, wz)
     classify(balls.velocities, balls.spins, balls.states, row, params.radius)
-    return Event(time, EventKind.STRIKE, (CUE,), float(shot.speed))
+    return Event(time, EventKind.STRIKE.value, (CUE,), float(shot.speed))
 
 
 def _events_from(rows: np.ndarray, ids: np.ndarray) -> list[Event]:
@@ -88,32 +88,36 @@ def simulate(table: Table, balls: BallSet, shot: Shot, tick: float = DEFAULT_TIC
     """
     state = balls.copy()
     events = [strike(state, shot, params)]
-    frames = run_to_rest(table, state, tick, params, events)
+    frames, stalls = _run_to_rest(table, state, tick, params, events)
     spinning = state.states == MotionState.SPINNING
     state.spins[spinning] = 0.0
     state.states[spinning] = MotionState.STATIONARY
-    return ShotResult(state.ids.copy(), frames, events, state)
+    return ShotResult(state.ids.copy(), frames, events, state, stalls)
 
 
 def run_to_rest(table: Table, state: BallSet, tick: float = DEFAULT_TICK,
                 params: PhysicsParams = DEFAULT_PARAMS,
                 events: list[Event] | None = None) -> FrameSequence:
     """Advance `state` in place until no ball moves; appends events to `events`."""
-    if events is None:
-        events = []
+    return _run_to_rest(table, state, tick, params, [] if events is None else events)[0]
+
+
+def _run_to_rest(table: Table, state: BallSet, tick: float, params: PhysicsParams,
+                 events: list[Event]) -> tuple[FrameSequence, int]:
     geo = _geometry(table)
     p = params.array()
     n = len(state)
     max_ticks = int(MAX_SHOT_SECONDS / tick)
     chunks_pos, chunks_cels, chunks_on = [], [], []
     ticks_done = 0
+    stalls = 0
     while ticks_done < max_ticks and state.moving.any():
         size = min(_CHUNK_TICKS, max_ticks - ticks_done)
         frame_pos = np.empty((size, n, 2))
         frame_cels = np.empty((size, n), dtype=np.int64)
         frame_on = np.empty((size, n), dtype=np.bool_)
         ev = empty_events(_EVENT_CAPACITY)
-        ran, n_ev, _stalls = run_ticks(
+        ran, n_ev, chunk_stalls = run_ticks(
             state.positions, state.velocities, state.spins, state.states, state.phases,
             state.pockets, geo.cushions, geo.jaws, geo.pockets, geo.centers, geo.length,
             geo.width, p, float(tick), ticks_done, size, ev, 0, frame_pos, frame_cels,
@@ -123,9 +127,11 @@ def run_to_rest(table: Table, state: BallSet, tick: float = DEFAULT_TICK,
         chunks_on.append(frame_on[:ran])
         events.extend(_events_from(ev[:n_ev], state.ids))
         ticks_done += ran
-    return FrameSequence(tick, _stack(chunks_pos, (0, n, 2), np.float64),
-                         _stack(chunks_cels, (0, n), np.int64),
-                         _stack(chunks_on, (0, n), np.bool_))
+        stalls += chunk_stalls
+    frames = FrameSequence(tick, _stack(chunks_pos, (0, n, 2), np.float64),
+                           _stack(chunks_cels, (0, n), np.int64),
+                           _stack(chunks_on, (0, n), np.bool_))
+    return frames, stalls
 
 
 def _stack(chunks: list[np.ndarray], empty_shape: tuple[int, ...], dtype) -> np.ndarray:

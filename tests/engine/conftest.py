@@ -1,0 +1,55 @@
+import numpy as np
+import pytest
+
+from server.engine import Table
+
+
+@pytest.fixture(scope="session")
+def table() -> Table:
+    return Table.pool("9ft")
+
+
+def pair_min_gap(positions: np.ndarray, on_table: np.ndarray, radius: float) -> float:
+    """Smallest centre distance minus 2R over the balls on the table (inf if fewer than 2)."""
+    p = positions[on_table]
+    if len(p) < 2:
+        return float("inf")
+    d = np.linalg.norm(p[:, None, :] - p[None, :, :], axis=2)
+    d[np.diag_indices(len(p))] = np.inf
+    return float(d.min() - 2 * radius)
+
+
+def frame_velocity(result, ball_id: int, tick_a: int, tick_b: int) -> np.ndarray:
+    """Mean velocity of a ball between two frames (index into result.frames)."""
+    row = int(np.flatnonzero(result.ids == ball_id)[0])
+    pos = result.frames.positions
+    return (pos[tick_b, row] - pos[tick_a, row]) / ((tick_b - tick_a) * result.frames.tick)
+
+
+def first_event_time(result, kind: str, ids: tuple[int, ...] | None = None) -> float:
+    for e in result.events:
+        if e.kind == kind and (ids is None or set(ids) <= set(e.ids)):
+            return e.time
+    raise AssertionError(f"no {kind} event with {ids}")
+
+
+def segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Distance from each point in p (K, 2) to the segment a-b."""
+    ab = b - a
+    t = np.clip(((p - a) @ ab) / (ab @ ab), 0.0, 1.0)
+    return np.linalg.norm(p - (a + t[:, None] * ab), axis=1)
+
+
+def in_play_area(table, positions: np.ndarray, tol: float = 1e-9) -> np.ndarray:
+    """(K,) bool: a ball centred there lies on the bed: inside the cushion noses' box, at
+    least R from every cushion segment and jaw, and on the table side of every pocket mouth."""
+    r = table.ball_radius
+    p = np.asarray(positions, dtype=float).reshape(-1, 2)
+    ok = ((p[:, 0] >= -tol) & (p[:, 0] <= table.length + tol)
+          & (p[:, 1] >= -tol) & (p[:, 1] <= table.width + tol))
+    for c in table.cushions:
+        ok &= segment_distance(p, np.array(c.start), np.array(c.end)) >= r - tol
+    for pocket in table.pockets:
+        a = np.array(pocket.jaws[0])
+        ok &= (p - a) @ np.array(pocket.outward) <= tol
+    return ok
