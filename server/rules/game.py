@@ -306,6 +306,8 @@ class Game:
                 if not pocketed and not ruling.notes:
                     parts.append("No ball pocketed.")
                 parts.append(f"{following} to shoot.")
+            if self.push_out_available:
+                parts.append(f"{following} may play a push out.")
         self.notice = None
         return self._record(Outcome(
             shooter=seat, pocketed=pocketed, fouls=tuple(ruling.fouls), continues=continues,

@@ -47,9 +47,9 @@ class Match:
         return Game(self.kind, self.players, breaker=breaker, table=self.table,
                     seed=self.seed + 1009 * n, options=self.options)
 
-    def _check_open(self) -> None:
+    def _check_open(self, code: str = "game_over") -> None:
         if self.over:
-            raise IllegalActionError("match_over", "The match is over.")
+            raise IllegalActionError(code, "The match is over.")
 
     def _scored(self, outcome: Outcome, forfeit: str | None = None) -> Outcome:
         """Count a finished game; end the match on reaching the race or on a forfeit."""
@@ -102,7 +102,7 @@ class Match:
 
     def next_game(self) -> Game:
         """Rack the next game once the current one is over and the match is not."""
-        self._check_open()
+        self._check_open("match_over")
         if not self.game.over:
             raise IllegalActionError("game_not_over", "The current game is still on.")
         self.game = self._new_game()

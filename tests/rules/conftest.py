@@ -1,0 +1,15 @@
+import pytest
+
+from server.rules import Game
+
+from .helpers import TABLE
+
+
+@pytest.fixture
+def eight() -> Game:
+    return Game("eight_ball", ("Ana", "Bob"), table=TABLE)
+
+
+@pytest.fixture
+def nine() -> Game:
+    return Game("nine_ball", ("Ana", "Bob"), table=TABLE)
