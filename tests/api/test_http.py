@@ -1,0 +1,143 @@
+"""HTTP API: health, create, list, show, join, the third join refused, the web client."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+
+from .conftest import create_room, join
+
+pytestmark = pytest.mark.timeout(60)
+
+
+def test_health(client):
+    assert client.get("/health").json() == {"status": "ok"}
+
+
+def test_create_room_returns_short_unguessable_id(client):
+    response = client.post("/api/rooms", json={"game": "nine_ball", "race_to": 5,
+                                               "shot_clock": 30})
+    assert response.status_code == 201
+    body = response.json()
+    assert re.fullmatch(r"[A-Za-z0-9_-]{12}", body["room_id"])
+    assert body | {"room_id": "x", "url": "x"} == {
+        "room_id": "x", "url": "x", "game": "nine_ball", "race_to": 5, "shot_clock": 30.0,
+        "seats": 2}
+    assert body["url"] == f"/r/{body['room_id']}"
+    assert create_room(client) != create_room(client)
+
+
+@pytest.mark.parametrize("body", [
+    {"game": "snooker"}, {"race_to": 3}, {"game": "eight_ball", "race_to": 0},
+    {"game": "eight_ball", "race_to": 16}, {"game": "eight_ball", "race_to": "three"},
+    {"game": "eight_ball", "shot_clock": -1}, {"game": "eight_ball", "shot_clock": 601},
+    {"game": "eight_ball", "colour": "red"},
+])
+def test_create_room_refuses_bad_bodies(client, body):
+    assert client.post("/api/rooms", json=body).status_code == 422
+    assert client.get("/api/rooms").json() == {"rooms": []}
+
+
+def test_shot_clock_below_minimum_is_refused(settings):
+    from .conftest import make_client
+
+    with make_client(settings, min_shot_clock=5.0) as c:
+        response = c.post("/api/rooms", json={"game": "eight_ball", "shot_clock": 2})
+        assert response.status_code == 422
+        assert response.json()["detail"]["code"] == "bad_shot_clock"
+        assert c.post("/api/rooms", json={"game": "eight_ball", "shot_clock": 0}) \
+            .status_code == 201
+
+
+def test_list_rooms_shows_game_status_players_and_spectators(client):
+    waiting = create_room(client, "eight_ball", race_to=3)
+    join(client, waiting, "Ana")
+    practice = create_room(client, "practice")
+    join(client, practice, "Pia")
+    full = create_room(client, "nine_ball")
+    join(client, full, "Ana")
+    join(client, full, "Ben")
+    with client.websocket_connect(f"/ws/rooms/{full}") as spectator:
+        spectator.receive_json()
+        rooms = {r["room_id"]: r for r in client.get("/api/rooms").json()["rooms"]}
+    assert rooms[waiting]["status"] == "waiting"
+    assert rooms[waiting]["players"] == ["Ana", None]
+    assert rooms[waiting]["race_to"] == 3
+    assert {k: v for k, v in rooms[practice].items() if k not in ("created_at", "score")} == {
+        "room_id": practice, "game": "practice", "race_to": 1, "shot_clock": 0.0, "seats": 1,
+        "status": "playing", "players": ["Pia"], "spectators": 0}
+    assert rooms[full]["status"] == "playing"
+    assert rooms[full]["players"] == ["Ana", "Ben"]
+    assert rooms[full]["spectators"] == 1
+    assert rooms[full]["score"] == [0, 0]
+    assert client.get("/api/rooms").json()["rooms"][0]["room_id"] == full  # newest first
+
+
+def test_show_room_and_unknown_room(client):
+    room_id = create_room(client)
+    body = client.get(f"/api/rooms/{room_id}").json()
+    assert body["status"] == "waiting"
+    assert body["state"]["phase"] == "waiting"
+    assert body["state"]["match"] is None
+    assert body["state"]["table"]["length"] == pytest.approx(2.54)
+    join(client, room_id, "Ana")
+    join(client, room_id, "Ben")
+    state = client.get(f"/api/rooms/{room_id}").json()["state"]
+    assert state["phase"] == "aiming"
+    assert state["match"]["turn"] == 0
+    assert len(state["balls"]) == 16
+    assert all(len(row) == 4 and all(isinstance(v, int) for v in row) for row in state["balls"])
+    missing = client.get("/api/rooms/nosuchroom00")
+    assert missing.status_code == 404
+    assert missing.json()["detail"]["code"] == "unknown_room"
+    assert client.post("/api/rooms/nosuchroom00/join", json={"name": "A"}).status_code == 404
+
+
+def test_join_gives_seats_then_refuses_the_third(client):
+    room_id = create_room(client)
+    a = join(client, room_id, "  Ana  ")
+    b = join(client, room_id, "Ben")
+    assert (a["seat"], a["name"], b["seat"]) == (0, "Ana", 1)
+    assert a["token"] != b["token"] and len(a["token"]) >= 40
+    third = client.post(f"/api/rooms/{room_id}/join", json={"name": "Cy"})
+    assert third.status_code == 409
+    assert third.json()["detail"]["code"] == "room_full"
+    assert client.get(f"/api/rooms/{room_id}").json()["players"] == ["Ana", "Ben"]
+
+
+def test_practice_has_one_seat(client):
+    room_id = create_room(client, "practice")
+    assert join(client, room_id, "Pia")["seat"] == 0
+    assert client.post(f"/api/rooms/{room_id}/join", json={"name": "X"}).status_code == 409
+
+
+@pytest.mark.parametrize("name", ["", "   ", "x" * 25, "tab\there", "new\nline", "\x00"])
+def test_join_refuses_bad_names(client, name):
+    room_id = create_room(client)
+    response = client.post(f"/api/rooms/{room_id}/join", json={"name": name})
+    assert response.status_code == 422
+    assert client.get(f"/api/rooms/{room_id}").json()["players"] == [None, None]
+
+
+def test_tokens_are_stored_only_as_hashes(client):
+    room_id = create_room(client)
+    token = join(client, room_id, "Ana")["token"]
+    room = client.app.state.registry.get(room_id).room
+    assert token not in repr(vars(room)) and token not in repr(room.seats)
+
+
+def test_openapi_documents_the_endpoints(client):
+    paths = client.get("/openapi.json").json()["paths"]
+    assert {"/health", "/api/rooms", "/api/rooms/{room_id}",
+            "/api/rooms/{room_id}/join"} <= set(paths)
+
+
+def test_web_client_is_served_at_root_and_room_links(client):
+    index = client.get("/")
+    assert index.status_code == 200 and "lobby" in index.text
+    assert client.get("/app.js").text.startswith("export")
+    room_id = create_room(client)
+    link = client.get(f"/r/{room_id}")
+    assert link.status_code == 200 and link.text == index.text
+    assert link.headers["content-type"].startswith("text/html")
