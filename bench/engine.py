@@ -1,0 +1,131 @@
+"""Engine benchmark: a full 8-ball break simulated to rest, frames included.
+
+    python -m bench.engine [--runs 30] [--seed 0] [--pooltool-python PATH]
+
+Prints the median wall time of `simulate` (cue ball on the head spot, 10 m/s straight at
+the apex, centre hit) with ticks and events, over `--runs` runs after one warm-up call
+(whose time, the numba compile or cache load, is printed too). When pooltool is importable,
+or an interpreter that has it is named by `--pooltool-python` (or $POOLTOOL_PYTHON),
+pooltool simulates the same break in the same run and the ratio is printed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import time
+
+from server.engine import Shot, Table, rack, simulate
+
+POOLTOOL_SCRIPT = r"""
+import json, statistics, sys, time
+import numpy as np
+import pooltool as pt
+
+runs = int(sys.argv[1])
+target_speed = float(sys.argv[2])
+
+def make():
+    table = pt.Table.default()
+    balls = pt.get_rack(pt.GameType.EIGHTBALL, table, spacing_factor=1e-3)
+    system = pt.System(table=table, balls=balls, cue=pt.Cue(cue_ball_id="cue"))
+    return system
+
+def cue_speed(V0):
+    s = make()
+    s.strike(V0=V0, phi=pt.aim.at_ball(s, "1"))
+    pt.simulate(s, inplace=True, max_events=3)
+    for ev in s.events:
+        if ev.event_type == pt.EventType.STICK_BALL:
+            return float(np.linalg.norm(ev.agents[1].final.state.rvw[1]))
+    raise SystemExit("no stick-ball event")
+
+# Find the stick speed that gives the cue ball `target_speed` (bisection; it is linear).
+V0 = target_speed * target_speed / cue_speed(target_speed)
+t0 = time.perf_counter()
+s = make(); s.strike(V0=V0, phi=pt.aim.at_ball(s, "1")); pt.simulate(s, inplace=True)
+warm = time.perf_counter() - t0
+sim, cont, events, duration = [], [], [], []
+for _ in range(runs):
+    s = make()
+    s.strike(V0=V0, phi=pt.aim.at_ball(s, "1"))
+    t0 = time.perf_counter(); pt.simulate(s, inplace=True); t1 = time.perf_counter()
+    pt.continuize(s, dt=1 / 120, inplace=True); t2 = time.perf_counter()
+    sim.append(t1 - t0); cont.append(t2 - t1); events.append(len(s.events)); duration.append(s.t)
+print(json.dumps({"version": pt.__version__, "warm_s": warm, "V0": V0,
+                  "cue_speed": cue_speed(V0), "sim_ms": statistics.median(sim) * 1e3,
+                  "continuize_ms": statistics.median(cont) * 1e3,
+                  "events": statistics.median(events), "seconds": statistics.median(duration)}))
+"""
+
+
+def ours(runs: int, seed: int) -> dict:
+    table = Table.pool("9ft")
+    balls = rack("eight_ball", table, seed=seed)
+    shot = Shot(0.0, 10.0)
+    t0 = time.perf_counter()
+    simulate(table, balls, shot)
+    warm = time.perf_counter() - t0
+    times = []
+    result = None
+    for _ in range(runs):
+        t0 = time.perf_counter()
+        result = simulate(table, balls, shot)
+        times.append(time.perf_counter() - t0)
+    assert result is not None
+    return {"warm_s": warm, "median_ms": statistics.median(times) * 1e3,
+            "min_ms": min(times) * 1e3, "max_ms": max(times) * 1e3,
+            "ticks": len(result.frames), "events": len(result.events),
+            "seconds": result.duration, "pocketed": result.pocketed()}
+
+
+def pooltool(runs: int, python: str | None) -> dict | None:
+    interpreter = python
+    if interpreter is None:
+        try:
+            import pooltool  # noqa: F401
+        except ImportError:
+            return None
+        interpreter = sys.executable
+    out = subprocess.run([interpreter, "-c", POOLTOOL_SCRIPT, str(runs), "10.0"],
+                         capture_output=True, text=True, timeout=900)
+    if out.returncode != 0:
+        print(out.stderr[-2000:], file=sys.stderr)
+        return None
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--runs", type=int, default=30)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--pooltool-python", default=os.environ.get("POOLTOOL_PYTHON"))
+    args = parser.parse_args(argv)
+    r = ours(args.runs, args.seed)
+    print(f"engine: 8-ball break, 10 m/s centre hit at the apex, seed {args.seed}, "
+          f"{args.runs} runs")
+    print(f"  first call (numba compile or cache load): {r['warm_s'] * 1e3:.0f} ms")
+    print(f"  simulate to rest, frames included: median {r['median_ms']:.2f} ms "
+          f"(min {r['min_ms']:.2f}, max {r['max_ms']:.2f})")
+    print(f"  {r['ticks']} ticks of 1/120 s ({r['seconds']:.2f} s of play), "
+          f"{r['events']} events, pocketed {r['pocketed']}")
+    pt = pooltool(max(5, args.runs // 2), args.pooltool_python)
+    if pt is None:
+        print("pooltool: not installed (pip install .[compare], or --pooltool-python PATH)")
+        return
+    total = pt["sim_ms"] + pt["continuize_ms"]
+    print(f"pooltool {pt['version']}: same break (stick speed {pt['V0']:.2f} m/s gives the cue "
+          f"ball {pt['cue_speed']:.2f} m/s), first call {pt['warm_s']:.1f} s")
+    print(f"  simulate median {pt['sim_ms']:.2f} ms + continuize at 1/120 s "
+          f"{pt['continuize_ms']:.2f} ms = {total:.2f} ms; {pt['events']:.0f} events, "
+          f"{pt['seconds']:.2f} s of play")
+    print(f"  ratio pooltool / ours: {total / r['median_ms']:.1f}x "
+          f"(simulate only: {pt['sim_ms'] / r['median_ms']:.1f}x)")
+
+
+if __name__ == "__main__":
+    main()
