@@ -4,7 +4,5 @@ from __future__ import annotations
 
 import warnings
 
-import pytest
-
 # Starlette 1.10 asks for `httpx2` under its TestClient; plain httpx works the same here.
 warnings.filterwarnings("ignore", message=".*httpx2.*")

@@ -148,8 +148,8 @@ def parse_client_message(text: str) -> AnyClientMessage:
     except ValidationError as exc:
         errors = exc.errors(include_url=False)
         kinds = {e["type"] for e in errors}
-        if "json_invalid" in kinds or "model_attributes_type" in kinds \
-                or "model_type" in kinds:
+        if kinds & {"json_invalid", "dict_type", "model_attributes_type", "model_type"} \
+                and not errors[0]["loc"][1:]:
             raise BadMessage("bad_json", "The message must be a JSON object.") from None
         if kinds & {"union_tag_not_found", "union_tag_invalid"}:
             raise BadMessage("unknown_type", "Unknown or missing message type; see "

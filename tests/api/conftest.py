@@ -65,11 +65,13 @@ def connect(client: TestClient, room_id: str, token: str | None = None,
 
 
 def greet(ws: WebSocketTestSession) -> tuple[dict, dict]:
-    """Read the `welcome` and `state` every new connection gets."""
+    """Read the `welcome`, `state` and own `presence` every new connection gets first."""
     welcome = ws.receive_json()
     assert welcome["type"] == "welcome"
     state = ws.receive_json()
-    assert state["type"] == "state"
+    assert state["type"] == "state" and state["seq"] == welcome["seq"]
+    presence = ws.receive_json()
+    assert presence["type"] == "presence" and presence["seq"] == welcome["seq"] + 1
     return welcome, state
 
 

@@ -1,0 +1,135 @@
+"""A shot streamed to the room: frames, events, `shot_result`, the next `state`."""
+
+from __future__ import annotations
+
+import pytest
+from pydantic import TypeAdapter
+
+from server.api.messages import (
+    EventMessage,
+    FrameMessage,
+    Presence,
+    ShotResultMessage,
+    StateMessage,
+)
+
+from .conftest import BREAK, connect, greet, make_client, receive_until, seated_room
+
+pytestmark = pytest.mark.timeout(120)
+
+SERVER_MODELS = {"frame": FrameMessage, "event": EventMessage, "state": StateMessage,
+                 "shot_result": ShotResultMessage, "presence": Presence}
+
+
+def drain_presence(ws, count: int) -> None:
+    for _ in range(count):
+        assert ws.receive_json()["type"] == "presence"
+
+
+def check_models(messages: list[dict]) -> None:
+    for m in messages:
+        TypeAdapter(SERVER_MODELS[m["type"]]).validate_python(m)
+
+
+def test_break_is_streamed_to_both_players_and_a_spectator(client):
+    room_id, ta, tb = seated_room(client)
+    with connect(client, room_id, ta) as a, connect(client, room_id, tb) as b, \
+            connect(client, room_id) as s:
+        welcomes = []
+        for ws, pending in ((a, 2), (b, 1), (s, 0)):
+            welcome, state = greet(ws)
+            welcomes.append(welcome)
+            drain_presence(ws, pending)
+        assert [w["seat"] for w in welcomes] == [0, 1, None]
+        assert welcomes[2]["role"] == "spectator"
+        assert state["phase"] == "aiming" and state["match"]["turn"] == 0
+
+        a.send_json(BREAK)
+        streams = [receive_until(ws, "state") for ws in (a, b, s)]
+
+    assert streams[0] == streams[1] == streams[2]  # everyone sees the same stream
+    stream = streams[0]
+    check_models(stream)
+    seqs = [m["seq"] for m in stream]
+    assert seqs == list(range(seqs[0], seqs[0] + len(seqs)))  # no gaps
+    assert [m["type"] for m in stream[-2:]] == ["shot_result", "state"]
+    assert stream[0]["type"] == "event" and stream[0]["kind"] == "strike"
+    assert stream[0]["speed"] == pytest.approx(9.0)
+
+    frames = [m for m in stream if m["type"] == "frame"]
+    ticks = [f["tick"] for f in frames]
+    assert ticks == sorted(set(ticks))
+    assert all(t % 6 == 0 for t in ticks[:-1])
+    assert frames[-1].get("last") is True and all("last" not in f for f in frames[:-1])
+    assert len(frames) >= 50  # a break rolls for seconds: 20 frames per second
+    for frame in frames:
+        for ball_id, x, y, cel in frame["b"]:
+            assert 0 <= ball_id <= 15 and 0 <= cel < 16
+            assert -100 <= x <= 2640 and -100 <= y <= 1370
+    assert len(frames[0]["b"]) == 16
+    first_positions = {row[0]: row[1:3] for row in frames[0]["b"]}
+    assert first_positions[0][0] > 635  # the cue ball left the head spot along +x
+
+    events = [m for m in stream if m["type"] == "event"]
+    kinds = {e["kind"] for e in events}
+    assert {"strike", "ball", "cushion"} <= kinds and "rest" not in kinds
+    assert any(e["kind"] == "ball" and 0 in e["ids"] for e in events)
+    event_ticks = [e["tick"] for e in events]
+    assert event_ticks == sorted(event_ticks)
+    for e in events:  # each event comes before the first frame at or after its tick
+        later = [f for f in frames if f["tick"] >= e["tick"]]
+        assert not later or stream.index(e) < stream.index(later[0])
+
+    result, state = stream[-2], stream[-1]
+    outcome = result["outcome"]
+    assert result["shot"] == 1 and result["cause"] == "shot"
+    assert outcome["shooter"] == 0 and isinstance(outcome["message"], str)
+    assert state["phase"] == "aiming" and state["shot"] is None
+    assert state["match"]["turn"] == outcome["next_turn"]
+    last = {row[0]: row for row in frames[-1]["b"]}
+    moved_by_rules = set(outcome["spotted"]) | {0}
+    for row in state["balls"]:
+        if row[0] not in moved_by_rules:
+            assert last[row[0]] == row  # the state shows the table where the stream ended
+    pocketed = {e["ids"][0] for e in events if e["kind"] == "pocket"}
+    assert set(outcome["pocketed"]) == pocketed
+
+
+def test_member_joining_mid_shot_gets_state_and_joins_the_stream(settings):
+    with make_client(settings, pace=2.0) as client:
+        room_id, ta, _ = seated_room(client)
+        with connect(client, room_id, ta) as a:
+            greet(a)
+            a.send_json(BREAK)
+            for _ in range(1000):
+                message = a.receive_json()
+                if message["type"] == "frame" and message["tick"] >= 60:
+                    break
+            with connect(client, room_id) as s:
+                welcome, state = greet(s)
+                assert state["phase"] == "rolling"
+                assert state["shot"]["id"] == 1 and state["shot"]["seat"] == 0
+                assert state["shot"]["tick"] >= 60
+                assert state["shot"]["ticks"] > state["shot"]["tick"]
+                assert state["match"]["turn"] == 0  # the match as it was at the strike
+                assert len(state["balls"]) >= 10
+                assert state["seq"] == welcome["seq"]
+                rest = receive_until(s, "state")
+            seqs = [m["seq"] for m in rest]
+            assert seqs[0] == welcome["seq"] + 2  # after our own presence
+            assert seqs == list(range(seqs[0], seqs[0] + len(seqs)))
+            frames = [m for m in rest if m["type"] == "frame"]
+            assert frames and frames[0]["tick"] > state["shot"]["tick"]
+            assert frames[-1]["tick"] == state["shot"]["ticks"]
+            assert rest[-2]["type"] == "shot_result"
+
+
+def test_rest_state_is_the_same_over_http_and_websocket(client):
+    room_id, ta, _ = seated_room(client)
+    with connect(client, room_id, ta) as a:
+        greet(a)
+        a.send_json(BREAK)
+        final = receive_until(a, "state")[-1]
+        http_state = client.get(f"/api/rooms/{room_id}").json()["state"]
+    assert http_state["balls"] == final["balls"]
+    assert http_state["match"] == final["match"]
