@@ -1,0 +1,127 @@
+/**
+ * Sounds of the table, synthesised with Web Audio (no sound files): the cue's strike, the
+ * click of two balls, the thump of a cushion, the drop into a pocket. Volume follows the
+ * impact speed from the server's `event`. The context starts on the first user gesture
+ * (browsers block audio before that); `muted` is remembered by the caller.
+ */
+
+/** Gain in [0, 1] for an impact at `speed` m/s (`full` = speed that sounds at full volume). */
+export function impactGain(speed, full) {
+  if (!(speed > 0)) return 0;
+  return Math.min(1, Math.sqrt(speed / full));
+}
+
+export class TableAudio {
+  constructor() {
+    this.ctx = null;
+    this.master = null;
+    this.noise = null;
+    this.muted = false;
+    this.recent = 0; // sounds started in the current 30 ms: caps a burst (the break)
+    this.recentAt = 0;
+  }
+
+  /** Create/resume the AudioContext; call from a user gesture. */
+  unlock() {
+    const AC = globalThis.AudioContext || globalThis.webkitAudioContext;
+    if (!AC) return;
+    if (!this.ctx) {
+      this.ctx = new AC();
+      this.master = this.ctx.createGain();
+      this.master.gain.value = this.muted ? 0 : 0.8;
+      this.master.connect(this.ctx.destination);
+      this.noise = this.makeNoise();
+    }
+    if (this.ctx.state === 'suspended') this.ctx.resume();
+  }
+
+  setMuted(muted) {
+    this.muted = muted;
+    if (this.master) this.master.gain.value = muted ? 0 : 0.8;
+  }
+
+  makeNoise() {
+    const len = this.ctx.sampleRate * 0.5;
+    const buf = this.ctx.createBuffer(1, len, this.ctx.sampleRate);
+    const data = buf.getChannelData(0);
+    let seed = 12345;
+    for (let i = 0; i < len; i++) {
+      seed = (seed * 1103515245 + 12345) & 0x7fffffff; // own tiny PRNG: reproducible
+      data[i] = (seed / 0x3fffffff) - 1;
+    }
+    return buf;
+  }
+
+  /** Play a table event: kind "strike" | "ball" | "cushion" | "jaw" | "pocket". */
+  play(kind, speed) {
+    if (!this.ctx || this.muted || this.ctx.state !== 'running') return;
+    const now = this.ctx.currentTime;
+    if (now - this.recentAt > 0.03) { this.recentAt = now; this.recent = 0; }
+    if (++this.recent > 6) return;
+    switch (kind) {
+      case 'strike': this.strike(now, impactGain(speed, 9)); break;
+      case 'ball': this.click(now, impactGain(speed, 5)); break;
+      case 'cushion': case 'jaw': this.thump(now, impactGain(speed, 4)); break;
+      case 'pocket': this.drop(now, 0.6 + 0.4 * impactGain(speed, 3)); break;
+      default: break;
+    }
+  }
+
+  envelope(t, peak, attack, decay) {
+    const g = this.ctx.createGain();
+    g.gain.setValueAtTime(0.0001, t);
+    g.gain.exponentialRampToValueAtTime(Math.max(0.0002, peak), t + attack);
+    g.gain.exponentialRampToValueAtTime(0.0001, t + attack + decay);
+    g.connect(this.master);
+    return g;
+  }
+
+  tone(t, freq, endFreq, peak, decay, type = 'sine') {
+    const o = this.ctx.createOscillator();
+    o.type = type;
+    o.frequency.setValueAtTime(freq, t);
+    o.frequency.exponentialRampToValueAtTime(endFreq, t + decay);
+    o.connect(this.envelope(t, peak, 0.002, decay));
+    o.start(t);
+    o.stop(t + decay + 0.05);
+  }
+
+  burst(t, filterType, freq, q, peak, decay) {
+    const src = this.ctx.createBufferSource();
+    src.buffer = this.noise;
+    const f = this.ctx.createBiquadFilter();
+    f.type = filterType;
+    f.frequency.value = freq;
+    f.Q.value = q;
+    src.connect(f);
+    f.connect(this.envelope(t, peak, 0.001, decay));
+    src.start(t, Math.random() * 0.3);
+    src.stop(t + decay + 0.05);
+  }
+
+  /** Leather tip on phenolic: a dull tock with a short bright edge. */
+  strike(t, g) {
+    this.tone(t, 420, 180, 0.5 * g + 0.05, 0.05, 'triangle');
+    this.burst(t, 'bandpass', 2200, 1.2, 0.35 * g + 0.03, 0.03);
+  }
+
+  /** Ball on ball: a hard, high click. */
+  click(t, g) {
+    this.tone(t, 3100 + 400 * g, 2600, 0.45 * g, 0.025, 'sine');
+    this.burst(t, 'highpass', 3500, 0.8, 0.5 * g, 0.018);
+  }
+
+  /** Ball on cushion: a low rubbery thump. */
+  thump(t, g) {
+    this.tone(t, 140, 70, 0.6 * g, 0.09, 'sine');
+    this.burst(t, 'lowpass', 600, 0.7, 0.25 * g, 0.06);
+  }
+
+  /** Into the pocket: a knock on the liner and a short rattle. */
+  drop(t, g) {
+    this.tone(t, 220, 90, 0.5 * g, 0.12, 'triangle');
+    for (let k = 1; k <= 3; k++) {
+      this.burst(t + 0.05 * k + 0.01 * k * k, 'bandpass', 900 - 150 * k, 2, (0.3 * g) / k, 0.04);
+    }
+  }
+}

@@ -1,0 +1,214 @@
+/**
+ * Table geometry for the client: the view transform (table metres <-> canvas pixels) and
+ * the aiming guide (where the cue ball would first hit a ball or a cushion).
+ *
+ * Pure functions, no DOM: tested by `node --test web/tests/`.
+ * Table coordinates follow the server (SI units, origin bottom-left at the cushion noses,
+ * x along the long side, y up); the screen has y down, so the view flips y.
+ */
+
+/** Width of the cushion rubber and of the wooden rail, in metres (drawing only). */
+export const CUSHION_WIDTH = 0.05;
+export const RAIL_WIDTH = 0.1;
+
+/**
+ * The transform that fits the whole table (bed, cushions, rails) into a canvas of
+ * `width` x `height` CSS pixels with `margin` CSS pixels around it.
+ */
+export function makeView(table, width, height, margin = 8) {
+  const border = CUSHION_WIDTH + RAIL_WIDTH;
+  const totalL = table.length + 2 * border;
+  const totalW = table.width + 2 * border;
+  const scale = Math.max(1e-6, Math.min((width - 2 * margin) / totalL,
+    (height - 2 * margin) / totalW));
+  const ox = (width - table.length * scale) / 2;
+  const oy = (height - table.width * scale) / 2;
+  return {
+    scale, ox, oy, width, height,
+    /** Table metres -> CSS pixels. */
+    toScreen(x, y) {
+      return [ox + x * scale, oy + (table.width - y) * scale];
+    },
+    /** CSS pixels -> table metres. */
+    toTable(sx, sy) {
+      return [(sx - ox) / scale, table.width - (sy - oy) / scale];
+    },
+  };
+}
+
+export const dist = (ax, ay, bx, by) => Math.hypot(bx - ax, by - ay);
+
+/** Smallest t > eps with |p + t d - c| = r (d a unit vector), or Infinity. */
+export function rayCircle(px, py, dx, dy, cx, cy, r, eps = 1e-9) {
+  const fx = px - cx;
+  const fy = py - cy;
+  const b = fx * dx + fy * dy;
+  const c = fx * fx + fy * fy - r * r;
+  const disc = b * b - c;
+  if (disc < 0) return Infinity;
+  const s = Math.sqrt(disc);
+  const t1 = -b - s;
+  if (t1 > eps) return t1;
+  // Starting inside (overlapping) counts only if moving away is not the case.
+  if (c < 0 && b < 0) return 0;
+  return Infinity;
+}
+
+/**
+ * Where a ball of radius r centred at p moving along unit d first touches a straight
+ * cushion (nose from `start` to `end`, inward `normal`): the centre reaches the line offset
+ * by r along the normal while its foot lies within the segment. Returns t or Infinity.
+ */
+export function rayCushion(px, py, dx, dy, cushion, r) {
+  const [nx, ny] = cushion.normal;
+  const [sx, sy] = cushion.start;
+  const [ex, ey] = cushion.end;
+  const approach = dx * nx + dy * ny;
+  if (approach >= -1e-12) return Infinity; // moving along or away from the cushion
+  const gap = (px - sx) * nx + (py - sy) * ny - r; // distance of the centre to the offset line
+  const t = Math.max(0, -gap / approach);
+  const hx = px + t * dx - sx;
+  const hy = py + t * dy - sy;
+  const lx = ex - sx;
+  const ly = ey - sy;
+  const len2 = lx * lx + ly * ly;
+  const u = (hx * lx + hy * ly) / len2;
+  return u >= 0 && u <= 1 ? t : Infinity;
+}
+
+/**
+ * The aiming guide for a shot from the cue ball at `cue` ([x, y]) at `angle` (radians from
+ * +x): the first ball, cushion or jaw it would touch.
+ *
+ * `balls` is an iterable of {id, x, y} on the table (the cue ball, id 0, is skipped).
+ * Returns {kind: "ball"|"cushion"|"jaw"|"none", t, contact: [x, y] (cue-ball centre at
+ * contact: the ghost ball), hitId, objectDir, cueDir} where `objectDir` is the object
+ * ball's likely direction (the line of centres) and `cueDir` the cue ball's after contact
+ * (tangent line for a ball, mirror for a cushion); directions are unit [dx, dy] or null.
+ */
+export function castGuide(table, balls, cue, angle) {
+  const r = table.ball_radius;
+  const [px, py] = cue;
+  const dx = Math.cos(angle);
+  const dy = Math.sin(angle);
+  let best = { kind: 'none', t: Infinity, hitId: null, normal: null, center: null };
+  for (const b of balls) {
+    if (b.id === 0) continue;
+    const t = rayCircle(px, py, dx, dy, b.x, b.y, 2 * r);
+    if (t < best.t) best = { kind: 'ball', t, hitId: b.id, center: [b.x, b.y] };
+  }
+  for (const c of table.cushions) {
+    const t = rayCushion(px, py, dx, dy, c, r);
+    if (t < best.t) best = { kind: 'cushion', t, hitId: null, normal: c.normal };
+  }
+  for (const c of table.cushions) {
+    for (const j of [c.start, c.end]) {
+      const t = rayCircle(px, py, dx, dy, j[0], j[1], r);
+      if (t < best.t) best = { kind: 'jaw', t, hitId: null, center: j };
+    }
+  }
+  if (best.kind === 'none') {
+    // Heading into a pocket mouth: run to the edge of the bed's bounding box and beyond.
+    const t = rayBox(px, py, dx, dy, -r * 3, -r * 3, table.length + 3 * r, table.width + 3 * r);
+    return { kind: 'none', t, contact: [px + t * dx, py + t * dy], hitId: null,
+      objectDir: null, cueDir: null };
+  }
+  const contact = [px + best.t * dx, py + best.t * dy];
+  let objectDir = null;
+  let cueDir = null;
+  if (best.kind === 'ball') {
+    const n = unit(best.center[0] - contact[0], best.center[1] - contact[1]);
+    objectDir = n;
+    // Stun shot: the cue ball leaves along the tangent line (nothing if dead straight).
+    const along = dx * n[0] + dy * n[1];
+    const tx = dx - along * n[0];
+    const ty = dy - along * n[1];
+    cueDir = Math.hypot(tx, ty) > 1e-6 ? unit(tx, ty) : null;
+  } else {
+    const n = best.kind === 'cushion' ? best.normal
+      : unit(contact[0] - best.center[0], contact[1] - best.center[1]);
+    const along = dx * n[0] + dy * n[1];
+    cueDir = [dx - 2 * along * n[0], dy - 2 * along * n[1]];
+  }
+  return { kind: best.kind, t: best.t, contact, hitId: best.hitId, objectDir, cueDir };
+}
+
+/** Exit distance of a ray starting inside an axis-aligned box (Infinity-safe). */
+export function rayBox(px, py, dx, dy, x0, y0, x1, y1) {
+  let t = Infinity;
+  if (dx > 1e-12) t = Math.min(t, (x1 - px) / dx);
+  if (dx < -1e-12) t = Math.min(t, (x0 - px) / dx);
+  if (dy > 1e-12) t = Math.min(t, (y1 - py) / dy);
+  if (dy < -1e-12) t = Math.min(t, (y0 - py) / dy);
+  return Math.max(0, t);
+}
+
+export function unit(x, y) {
+  const n = Math.hypot(x, y);
+  return n > 0 ? [x / n, y / n] : [0, 0];
+}
+
+/**
+ * Where the cue ball may be placed with ball in hand: the whole bed ("anywhere") or the
+ * kitchen ("behind_head_string": x <= head string). Returns {x0, y0, x1, y1} for the ball
+ * centre, or null when there is no ball in hand.
+ */
+export function placementArea(table, ballInHand) {
+  if (!ballInHand) return null;
+  const r = table.ball_radius;
+  const x1 = ballInHand === 'behind_head_string' ? table.head_string : table.length - r;
+  return { x0: r, y0: r, x1, y1: table.width - r };
+}
+
+/**
+ * Clamp a wished cue-ball position into the allowed area and report whether it overlaps
+ * another ball (the server has the last word; this only guides the drag).
+ */
+export function placeCue(table, area, balls, x, y) {
+  const cx = Math.min(Math.max(x, area.x0), area.x1);
+  const cy = Math.min(Math.max(y, area.y0), area.y1);
+  const r = table.ball_radius;
+  let free = true;
+  for (const b of balls) {
+    if (b.id === 0) continue;
+    if (dist(cx, cy, b.x, b.y) < 2 * r) { free = false; break; }
+  }
+  return { x: cx, y: cy, free };
+}
+
+/** Index of the pocket whose hole contains (x, y) (with some slack), or -1. */
+export function pocketAt(table, x, y, slack = 1.6) {
+  let best = -1;
+  let bestD = Infinity;
+  table.pockets.forEach((p, i) => {
+    const d = dist(x, y, p.center[0], p.center[1]);
+    if (d < p.radius * slack && d < bestD) { best = i; bestD = d; }
+  });
+  return best;
+}
+
+/**
+ * Aiming by pulling back: the shot angle points from the cue ball towards the pressed point
+ * `anchor`; pulling the pointer back (away from the target, along the aim line) sets the
+ * power in [0, 1] over `maxPull` metres.
+ */
+export function pullPower(anchor, pointer, angle, maxPull) {
+  const back = -((pointer[0] - anchor[0]) * Math.cos(angle)
+    + (pointer[1] - anchor[1]) * Math.sin(angle));
+  return Math.min(1, Math.max(0, back / maxPull));
+}
+
+/** Cue-ball speed in m/s for a power in [0, 1]: gentle at the bottom, a break at the top. */
+export const MIN_SPEED = 0.25;
+export const MAX_SPEED = 10;
+export function speedFromPower(power) {
+  const p = Math.min(1, Math.max(0, power));
+  return MIN_SPEED + (MAX_SPEED - MIN_SPEED) * p ** 1.6;
+}
+
+/** Clamp a tip offset (side, height) into the legal disc |tip| <= limit. */
+export function clampTip(side, height, limit = 0.5) {
+  const n = Math.hypot(side, height);
+  if (n <= limit || n === 0) return [side, height];
+  return [(side * limit) / n, (height * limit) / n];
+}

@@ -1,0 +1,146 @@
+/**
+ * Pointer input on the table (mouse, pen and touch through pointer events).
+ *
+ * `attachPointer` only queues actions (javascript-tetris's habit); the game loop hands them
+ * to `AimController.handle`, which turns them into aiming state and commands to send.
+ * The controller is pure (no DOM): actions carry table coordinates.
+ *
+ * Gestures: move the pointer to aim (the cue follows it around the cue ball); press where
+ * you aim, pull back along the line to set the power, release to shoot (release without
+ * pulling cancels). With ball in hand, drag the cue ball. When the 8 must be called, click a
+ * pocket.
+ */
+
+import {
+  castGuide, pullPower, speedFromPower, placeCue, placementArea, pocketAt, dist,
+} from './geometry.js';
+
+/** Queue pointer actions from `canvas` as {type, sx, sy, pointerType} (CSS pixels). */
+export function attachPointer(canvas, queue) {
+  const pos = (ev) => {
+    const r = canvas.getBoundingClientRect();
+    return { sx: ev.clientX - r.left, sy: ev.clientY - r.top, pointerType: ev.pointerType };
+  };
+  canvas.addEventListener('pointerdown', (ev) => {
+    if (ev.button !== undefined && ev.button > 0) return;
+    canvas.setPointerCapture?.(ev.pointerId);
+    queue.push({ type: 'down', ...pos(ev) });
+    ev.preventDefault();
+  });
+  canvas.addEventListener('pointermove', (ev) => queue.push({ type: 'move', ...pos(ev) }));
+  canvas.addEventListener('pointerup', (ev) => queue.push({ type: 'up', ...pos(ev) }));
+  canvas.addEventListener('pointercancel', () => queue.push({ type: 'cancel' }));
+  canvas.addEventListener('contextmenu', (ev) => ev.preventDefault());
+}
+
+/** How far (metres on the table) a full pull-back is. */
+export const MAX_PULL = 0.4;
+/** Below this power a release is a cancel. */
+export const MIN_POWER = 0.03;
+
+export class AimController {
+  constructor() {
+    this.angle = 0; // radians, table frame
+    this.power = 0;
+    this.tip = [0, 0];
+    this.mode = 'idle'; // idle | pulling | placing
+    this.anchor = null;
+    this.pointer = null; // last pointer position (table metres)
+    this.placing = null; // {x, y, free} wished cue-ball position while dragging
+    this.hoverPocket = -1;
+    this.dirty = false; // aim changed since the last `aim` message
+  }
+
+  reset() {
+    this.mode = 'idle';
+    this.power = 0;
+    this.anchor = null;
+    this.placing = null;
+  }
+
+  /**
+   * Handle one action {type, x, y} (table metres) given the situation:
+   * {table, balls (Array of {id, x, y}), cue ([x, y] or null), myTurn, ballInHand,
+   *  requiresCall}. Returns a list of messages to send (protocol objects).
+   */
+  handle(action, ctx) {
+    const out = [];
+    if (action.type === 'cancel') { this.reset(); this.dirty = true; return out; }
+    const p = action.x === undefined ? this.pointer : [action.x, action.y];
+    if (p) this.pointer = p;
+    if (!ctx.myTurn || !ctx.table) { this.reset(); return out; }
+    const { table } = ctx;
+    const r = table.ball_radius;
+    const area = placementArea(table, ctx.ballInHand);
+    this.hoverPocket = ctx.requiresCall && p ? pocketAt(table, p[0], p[1]) : -1;
+
+    switch (action.type) {
+      case 'down': {
+        if (!p) break;
+        if (ctx.requiresCall && this.hoverPocket >= 0) {
+          out.push({ type: 'call', pocket: this.hoverPocket });
+          break;
+        }
+        if (area && (!ctx.cue || dist(p[0], p[1], ctx.cue[0], ctx.cue[1]) < r * 2.5)) {
+          this.mode = 'placing';
+          this.placing = placeCue(table, area, ctx.balls, p[0], p[1]);
+          break;
+        }
+        if (!ctx.cue) break;
+        this.mode = 'pulling';
+        this.anchor = p;
+        if (dist(p[0], p[1], ctx.cue[0], ctx.cue[1]) > r) {
+          this.angle = Math.atan2(p[1] - ctx.cue[1], p[0] - ctx.cue[0]);
+        }
+        this.power = 0;
+        this.dirty = true;
+        break;
+      }
+      case 'move': {
+        if (!p) break;
+        if (this.mode === 'placing' && area) {
+          this.placing = placeCue(table, area, ctx.balls, p[0], p[1]);
+        } else if (this.mode === 'pulling') {
+          this.power = pullPower(this.anchor, p, this.angle, MAX_PULL);
+          this.dirty = true;
+        } else if (ctx.cue && action.pointerType !== 'touch'
+                   && dist(p[0], p[1], ctx.cue[0], ctx.cue[1]) > r) {
+          this.angle = Math.atan2(p[1] - ctx.cue[1], p[0] - ctx.cue[0]);
+          this.dirty = true;
+        }
+        break;
+      }
+      case 'up': {
+        if (this.mode === 'placing' && this.placing) {
+          if (this.placing.free) {
+            out.push({ type: 'place_cue', x: round6(this.placing.x), y: round6(this.placing.y) });
+          }
+          this.mode = 'idle';
+          break;
+        }
+        if (this.mode === 'pulling') {
+          if (p && this.anchor) this.power = pullPower(this.anchor, p, this.angle, MAX_PULL);
+          if (this.power >= MIN_POWER) {
+            out.push({ type: 'shoot', angle: round6(this.angle),
+              speed: round6(speedFromPower(this.power)), tip: this.tip.map(round6) });
+          }
+          this.reset();
+          this.dirty = true;
+        }
+        break;
+      }
+      default:
+        break;
+    }
+    return out;
+  }
+
+  /** The guide for the current aim from `cue`. */
+  guide(table, balls, cue) {
+    return castGuide(table, balls, cue, this.angle);
+  }
+}
+
+function round6(v) {
+  return Math.round(v * 1e6) / 1e6;
+}

@@ -1,0 +1,130 @@
+/**
+ * Talking to the server: the HTTP API (rooms) and the room WebSocket with automatic
+ * reconnection (exponential back-off, capped). Messages go out as JSON objects; incoming
+ * ones are parsed and handed to `onMessage`. See docs/protocol.md.
+ */
+
+async function request(method, path, body) {
+  const res = await fetch(path, {
+    method,
+    headers: body ? { 'Content-Type': 'application/json' } : {},
+    body: body ? JSON.stringify(body) : undefined,
+  });
+  let data = null;
+  try { data = await res.json(); } catch { data = null; }
+  if (!res.ok) {
+    const d = data?.detail;
+    const message = (d && typeof d === 'object' && !Array.isArray(d) && d.message)
+      || (Array.isArray(d) && d[0]?.msg) || `HTTP ${res.status}`;
+    const err = new Error(message);
+    err.status = res.status;
+    err.code = d?.code ?? null;
+    throw err;
+  }
+  return data;
+}
+
+export const api = {
+  createRoom: (game, raceTo, shotClock) => request('POST', '/api/rooms',
+    { game, race_to: raceTo, ...(shotClock !== undefined ? { shot_clock: shotClock } : {}) }),
+  listRooms: () => request('GET', '/api/rooms'),
+  getRoom: (roomId) => request('GET', `/api/rooms/${encodeURIComponent(roomId)}`),
+  join: (roomId, name) => request('POST', `/api/rooms/${encodeURIComponent(roomId)}/join`,
+    { name }),
+};
+
+/** Close codes after which reconnecting cannot help. */
+const FINAL_CLOSE = new Set([4000]);
+
+export class RoomSocket {
+  /**
+   * @param {string} roomId
+   * @param {() => string|null} getToken the seat token (null: spectator), read at each connect
+   * @param {{onMessage, onStatus}} handlers onStatus(status, detail)
+   */
+  constructor(roomId, getToken, { onMessage, onStatus }) {
+    this.roomId = roomId;
+    this.getToken = getToken;
+    this.onMessage = onMessage;
+    this.onStatus = onStatus;
+    this.ws = null;
+    this.attempt = 0;
+    this.closed = false;
+    this.timer = null;
+    this.refusals = 0;
+  }
+
+  url() {
+    const proto = location.protocol === 'https:' ? 'wss:' : 'ws:';
+    const token = this.getToken();
+    const q = token ? `?token=${encodeURIComponent(token)}` : '';
+    return `${proto}//${location.host}/ws/rooms/${encodeURIComponent(this.roomId)}${q}`;
+  }
+
+  connect() {
+    if (this.closed) return;
+    this.onStatus(this.attempt === 0 ? 'connecting' : 'reconnecting');
+    let opened = false;
+    const ws = new WebSocket(this.url());
+    this.ws = ws;
+    ws.onopen = () => { opened = true; this.attempt = 0; this.refusals = 0; };
+    ws.onmessage = (ev) => {
+      let msg;
+      try { msg = JSON.parse(ev.data); } catch { return; }
+      if (msg && typeof msg === 'object') {
+        if (msg.type === 'welcome') this.onStatus('open');
+        this.onMessage(msg);
+      }
+    };
+    ws.onclose = (ev) => {
+      if (this.ws !== ws) return;
+      this.ws = null;
+      if (this.closed) return;
+      if (FINAL_CLOSE.has(ev.code)) { this.onStatus('closed', 'Opened in another tab.'); return; }
+      if (!opened) this.refusals += 1;
+      if (this.refusals >= 6) { this.onStatus('closed', 'The room cannot be reached.'); return; }
+      this.attempt += 1;
+      const wait = Math.min(8000, 400 * 2 ** Math.min(this.attempt - 1, 5));
+      this.onStatus('reconnecting', `Reconnecting in ${Math.round(wait / 100) / 10} s`);
+      this.timer = setTimeout(() => this.connect(), wait);
+    };
+  }
+
+  /** Send a message; returns false when not connected (the caller may retry). */
+  send(msg) {
+    if (!this.ws || this.ws.readyState !== WebSocket.OPEN) return false;
+    this.ws.send(JSON.stringify(msg));
+    return true;
+  }
+
+  /** Reconnect now (e.g. after the token changed). */
+  reconnect() {
+    clearTimeout(this.timer);
+    const old = this.ws;
+    this.ws = null;
+    if (old) old.close();
+    this.attempt = 0;
+    this.connect();
+  }
+
+  close() {
+    this.closed = true;
+    clearTimeout(this.timer);
+    if (this.ws) this.ws.close(1000);
+  }
+}
+
+// ---- remembered things ----------------------------------------------------------------
+const store = globalThis.localStorage;
+
+export const memory = {
+  name: () => store?.getItem('pool.name') ?? '',
+  setName: (n) => store?.setItem('pool.name', n),
+  muted: () => store?.getItem('pool.muted') === '1',
+  setMuted: (m) => store?.setItem('pool.muted', m ? '1' : '0'),
+  /** {seat, token, name} for a room, or null. */
+  seat: (roomId) => {
+    try { return JSON.parse(store?.getItem(`pool.seat.${roomId}`) ?? 'null'); } catch { return null; }
+  },
+  setSeat: (roomId, seat) => store?.setItem(`pool.seat.${roomId}`, JSON.stringify(seat)),
+};

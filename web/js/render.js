@@ -1,0 +1,336 @@
+/**
+ * Drawing on the table canvas. The table (wood, cushions, cloth, pockets, diamonds) is drawn
+ * once per size into a cached layer; every frame draws that layer, then the balls (sprites),
+ * the guide, the cue stick and the overlays. Sizes come from the server's table geometry, in
+ * metres, through the view transform (geometry.js); the canvas backing store is in device
+ * pixels (devicePixelRatio) so lines and sprites stay sharp.
+ */
+
+import { CUSHION_WIDTH, RAIL_WIDTH } from './geometry.js';
+import { drawBall } from './sprites.js';
+
+function roundRect(ctx, x, y, w, h, r) {
+  ctx.beginPath();
+  ctx.moveTo(x + r, y);
+  ctx.arcTo(x + w, y, x + w, y + h, r);
+  ctx.arcTo(x + w, y + h, x, y + h, r);
+  ctx.arcTo(x, y + h, x, y, r);
+  ctx.arcTo(x, y, x + w, y, r);
+  ctx.closePath();
+}
+
+/** Draw the static table into `ctx` (already scaled to CSS pixels). */
+export function drawTable(ctx, table, view) {
+  const s = view.scale;
+  const L = table.length;
+  const W = table.width;
+  const [bx, by] = view.toScreen(0, W); // top-left of the bed
+  const bw = L * s;
+  const bh = W * s;
+  const cw = CUSHION_WIDTH * s;
+  const rw = RAIL_WIDTH * s;
+
+  ctx.fillStyle = '#10161c';
+  ctx.fillRect(0, 0, view.width, view.height);
+
+  // Wooden rails.
+  const ox = bx - cw - rw;
+  const oy = by - cw - rw;
+  const ow = bw + 2 * (cw + rw);
+  const oh = bh + 2 * (cw + rw);
+  const wood = ctx.createLinearGradient(0, oy, 0, oy + oh);
+  wood.addColorStop(0, '#6b3a1f');
+  wood.addColorStop(0.5, '#542c16');
+  wood.addColorStop(1, '#3f200f');
+  ctx.fillStyle = wood;
+  roundRect(ctx, ox, oy, ow, oh, rw * 0.6);
+  ctx.fill();
+  ctx.strokeStyle = 'rgba(255,220,180,0.25)';
+  ctx.lineWidth = Math.max(1, s * 0.006);
+  roundRect(ctx, ox + rw * 0.12, oy + rw * 0.12, ow - rw * 0.24, oh - rw * 0.24, rw * 0.5);
+  ctx.stroke();
+
+  // Pocket plates on the rails (dark leather around each hole).
+  for (const p of table.pockets) {
+    const [px, py] = view.toScreen(p.center[0], p.center[1]);
+    ctx.fillStyle = '#1b1b1b';
+    ctx.beginPath();
+    ctx.arc(px, py, p.radius * s * 1.45, 0, Math.PI * 2);
+    ctx.fill();
+  }
+
+  // Cloth (bed and under the cushions), with a soft vignette from the lamp.
+  const cloth = ctx.createRadialGradient(bx + bw / 2, by + bh / 2, bh * 0.1,
+    bx + bw / 2, by + bh / 2, bw * 0.7);
+  cloth.addColorStop(0, '#1f8a50');
+  cloth.addColorStop(1, '#146339');
+  ctx.fillStyle = cloth;
+  ctx.fillRect(bx - cw, by - cw, bw + 2 * cw, bh + 2 * cw);
+
+  // Cushion rubber: a strip behind each nose, its ends cut back towards the pocket.
+  for (const c of table.cushions) {
+    const [sx, sy] = c.start;
+    const [ex, ey] = c.end;
+    const [nx, ny] = c.normal;
+    const len = Math.hypot(ex - sx, ey - sy);
+    const tx = (ex - sx) / len;
+    const ty = (ey - sy) / len;
+    const cut = CUSHION_WIDTH * 0.9;
+    const pts = [
+      [sx, sy], [ex, ey],
+      [ex - nx * CUSHION_WIDTH + tx * cut, ey - ny * CUSHION_WIDTH + ty * cut],
+      [sx - nx * CUSHION_WIDTH - tx * cut, sy - ny * CUSHION_WIDTH - ty * cut],
+    ].map(([x, y]) => view.toScreen(x, y));
+    ctx.fillStyle = '#176b3f';
+    ctx.beginPath();
+    pts.forEach(([x, y], i) => (i ? ctx.lineTo(x, y) : ctx.moveTo(x, y)));
+    ctx.closePath();
+    ctx.fill();
+    // Nose highlight.
+    ctx.strokeStyle = 'rgba(190,255,210,0.28)';
+    ctx.lineWidth = Math.max(1, s * 0.004);
+    ctx.beginPath();
+    ctx.moveTo(pts[0][0], pts[0][1]);
+    ctx.lineTo(pts[1][0], pts[1][1]);
+    ctx.stroke();
+  }
+
+  // Pockets: the holes, with a little depth.
+  for (const p of table.pockets) {
+    const [px, py] = view.toScreen(p.center[0], p.center[1]);
+    const r = p.radius * s;
+    const hole = ctx.createRadialGradient(px, py, r * 0.2, px, py, r);
+    hole.addColorStop(0, '#000');
+    hole.addColorStop(0.8, '#050505');
+    hole.addColorStop(1, '#2a2a2a');
+    ctx.fillStyle = hole;
+    ctx.beginPath();
+    ctx.arc(px, py, r, 0, Math.PI * 2);
+    ctx.fill();
+  }
+
+  // Diamonds (sights) on the rails: every eighth of the length, every quarter of the width.
+  const mid = CUSHION_WIDTH + RAIL_WIDTH * 0.5;
+  const dsz = Math.max(2, s * 0.012);
+  const diamond = (x, y) => {
+    const [dx, dy] = view.toScreen(x, y);
+    ctx.beginPath();
+    ctx.moveTo(dx, dy - dsz);
+    ctx.lineTo(dx + dsz * 0.7, dy);
+    ctx.lineTo(dx, dy + dsz);
+    ctx.lineTo(dx - dsz * 0.7, dy);
+    ctx.closePath();
+    ctx.fill();
+  };
+  ctx.fillStyle = '#efe6cf';
+  for (let k = 1; k < 8; k++) {
+    if (k === 4) continue;
+    diamond((L * k) / 8, -mid);
+    diamond((L * k) / 8, W + mid);
+  }
+  for (let k = 1; k < 4; k++) {
+    diamond(-mid, (W * k) / 4);
+    diamond(L + mid, (W * k) / 4);
+  }
+
+  // Head string and spots, faint chalk marks.
+  ctx.strokeStyle = 'rgba(255,255,255,0.12)';
+  ctx.lineWidth = Math.max(1, s * 0.002);
+  const [hx0, hy0] = view.toScreen(table.head_string, 0);
+  const [hx1, hy1] = view.toScreen(table.head_string, W);
+  ctx.beginPath();
+  ctx.moveTo(hx0, hy0);
+  ctx.lineTo(hx1, hy1);
+  ctx.stroke();
+  ctx.fillStyle = 'rgba(255,255,255,0.35)';
+  for (const spot of [table.head_spot, table.foot_spot, [L / 2, W / 2]]) {
+    if (!spot) continue;
+    const [x, y] = view.toScreen(spot[0], spot[1]);
+    ctx.beginPath();
+    ctx.arc(x, y, Math.max(1.2, s * 0.004), 0, Math.PI * 2);
+    ctx.fill();
+  }
+}
+
+/** Balls at their (interpolated) positions: Map id -> {x, y, cel, heading}. */
+export function drawBalls(ctx, view, sprites, balls, scaleToCss) {
+  const ids = [...balls.keys()].sort((a, b) => a - b);
+  for (const id of ids) {
+    const b = balls.get(id);
+    const [x, y] = view.toScreen(b.x, b.y);
+    drawBall(ctx, sprites, id, x, y, b.cel ?? 0, -(b.heading ?? 0), scaleToCss);
+  }
+}
+
+/** A ball being pocketed: shrinks and darkens into the hole. */
+export function drawSinking(ctx, view, sprites, sink, now, scaleToCss) {
+  const f = Math.min(1, (now - sink.start) / sink.duration);
+  const x = sink.from[0] + (sink.to[0] - sink.from[0]) * f;
+  const y = sink.from[1] + (sink.to[1] - sink.from[1]) * f;
+  const [sx, sy] = view.toScreen(x, y);
+  ctx.save();
+  ctx.globalAlpha = 1 - f * 0.8;
+  drawBall(ctx, sprites, sink.id, sx, sy, sink.cel, sink.heading, scaleToCss * (1 - 0.45 * f));
+  ctx.restore();
+}
+
+/** The guide line, the ghost ball and the object ball's likely path. */
+export function drawGuide(ctx, view, table, cue, guide) {
+  const s = view.scale;
+  const r = table.ball_radius * s;
+  const [cx, cy] = view.toScreen(cue[0], cue[1]);
+  const [gx, gy] = view.toScreen(guide.contact[0], guide.contact[1]);
+  ctx.save();
+  ctx.lineWidth = Math.max(1, s * 0.003);
+  ctx.strokeStyle = 'rgba(255,255,255,0.75)';
+  ctx.setLineDash([Math.max(3, r * 0.5), Math.max(3, r * 0.4)]);
+  ctx.beginPath();
+  ctx.moveTo(cx, cy);
+  ctx.lineTo(gx, gy);
+  ctx.stroke();
+  ctx.setLineDash([]);
+  if (guide.kind !== 'none') {
+    ctx.strokeStyle = 'rgba(255,255,255,0.85)';
+    ctx.beginPath();
+    ctx.arc(gx, gy, r, 0, Math.PI * 2);
+    ctx.stroke();
+  }
+  const ray = (dir, len, color) => {
+    if (!dir) return;
+    ctx.strokeStyle = color;
+    ctx.beginPath();
+    ctx.moveTo(gx, gy);
+    ctx.lineTo(gx + dir[0] * len * s, gy - dir[1] * len * s);
+    ctx.stroke();
+  };
+  if (guide.kind === 'ball') {
+    const [hx, hy] = [guide.contact[0] + guide.objectDir[0] * 2 * table.ball_radius,
+      guide.contact[1] + guide.objectDir[1] * 2 * table.ball_radius];
+    const [ox, oy] = view.toScreen(hx, hy);
+    ctx.lineWidth = Math.max(1.5, s * 0.004);
+    ctx.strokeStyle = 'rgba(255,230,120,0.9)';
+    ctx.beginPath();
+    ctx.moveTo(ox, oy);
+    ctx.lineTo(ox + guide.objectDir[0] * 0.3 * s, oy - guide.objectDir[1] * 0.3 * s);
+    ctx.stroke();
+    ctx.lineWidth = Math.max(1, s * 0.002);
+    ray(guide.cueDir, 0.15, 'rgba(255,255,255,0.45)');
+  } else if (guide.kind !== 'none') {
+    ray(guide.cueDir, 0.2, 'rgba(255,255,255,0.45)');
+  }
+  ctx.restore();
+}
+
+/**
+ * The cue stick behind the cue ball along `angle` (table radians), pulled back by `power`
+ * (0..1). `alpha` < 1 for the opponent's relayed aim.
+ */
+export function drawCue(ctx, view, table, cue, angle, power, alpha = 1) {
+  const s = view.scale;
+  const r = table.ball_radius;
+  const gap = r * 1.25 + power * 0.22;
+  const length = 1.45;
+  const dx = Math.cos(angle);
+  const dy = Math.sin(angle);
+  const tip = [cue[0] - dx * gap, cue[1] - dy * gap];
+  const butt = [tip[0] - dx * length, tip[1] - dy * length];
+  const [tx, ty] = view.toScreen(tip[0], tip[1]);
+  const [bx, by] = view.toScreen(butt[0], butt[1]);
+  const nx = -(by - ty);
+  const ny = bx - tx;
+  const nl = Math.hypot(nx, ny) || 1;
+  const w0 = 0.0065 * s;
+  const w1 = 0.015 * s;
+  const side = (w) => [(nx / nl) * w, (ny / nl) * w];
+  const [a0x, a0y] = side(w0);
+  const [a1x, a1y] = side(w1);
+  ctx.save();
+  ctx.globalAlpha = alpha;
+  // Shadow.
+  ctx.fillStyle = 'rgba(0,0,0,0.3)';
+  const sh = 0.012 * s;
+  ctx.beginPath();
+  ctx.moveTo(tx + a0x + sh, ty + a0y + sh);
+  ctx.lineTo(bx + a1x + sh, by + a1y + sh);
+  ctx.lineTo(bx - a1x + sh, by - a1y + sh);
+  ctx.lineTo(tx - a0x + sh, ty - a0y + sh);
+  ctx.fill();
+  const grad = ctx.createLinearGradient(tx, ty, bx, by);
+  grad.addColorStop(0, '#3a6fd8'); // chalked tip
+  grad.addColorStop(0.012, '#f4ead2'); // ferrule
+  grad.addColorStop(0.03, '#e2c48f'); // maple shaft
+  grad.addColorStop(0.6, '#c99a5b');
+  grad.addColorStop(0.62, '#2b1508'); // joint and ebony butt
+  grad.addColorStop(0.75, '#5a2a12');
+  grad.addColorStop(0.77, '#d9c7a0');
+  grad.addColorStop(0.79, '#3b1a0a');
+  grad.addColorStop(1, '#1a0c05');
+  ctx.fillStyle = grad;
+  ctx.beginPath();
+  ctx.moveTo(tx + a0x, ty + a0y);
+  ctx.lineTo(bx + a1x, by + a1y);
+  ctx.lineTo(bx - a1x, by - a1y);
+  ctx.lineTo(tx - a0x, ty - a0y);
+  ctx.closePath();
+  ctx.fill();
+  ctx.restore();
+}
+
+/** Ball in hand: the allowed area tinted, the cue ball's wished place outlined. */
+export function drawPlacement(ctx, view, area, pending) {
+  const [x0, y0] = view.toScreen(area.x0, area.y1);
+  const [x1, y1] = view.toScreen(area.x1, area.y0);
+  ctx.save();
+  ctx.fillStyle = 'rgba(255,255,255,0.07)';
+  ctx.strokeStyle = 'rgba(255,255,255,0.35)';
+  ctx.setLineDash([6, 5]);
+  ctx.lineWidth = 1;
+  ctx.fillRect(x0, y0, x1 - x0, y1 - y0);
+  ctx.strokeRect(x0, y0, x1 - x0, y1 - y0);
+  if (pending && !pending.free) {
+    const [px, py] = view.toScreen(pending.x, pending.y);
+    ctx.setLineDash([]);
+    ctx.strokeStyle = 'rgba(255,80,80,0.9)';
+    ctx.lineWidth = 2;
+    ctx.beginPath();
+    ctx.arc(px, py, pending.r * view.scale * 1.1, 0, Math.PI * 2);
+    ctx.stroke();
+  }
+  ctx.restore();
+}
+
+/** Calling the 8: pockets ringed, the called one (or the hovered one) bright. */
+export function drawPocketCall(ctx, view, table, called, hovered, pulse) {
+  ctx.save();
+  table.pockets.forEach((p, i) => {
+    const [px, py] = view.toScreen(p.center[0], p.center[1]);
+    const on = i === called || i === hovered;
+    ctx.strokeStyle = on ? 'rgba(255,220,80,0.95)' : `rgba(255,220,80,${0.3 + 0.3 * pulse})`;
+    ctx.lineWidth = on ? 3 : 2;
+    ctx.beginPath();
+    ctx.arc(px, py, p.radius * view.scale * 1.25, 0, Math.PI * 2);
+    ctx.stroke();
+  });
+  ctx.restore();
+}
+
+/** Power meter next to the cue ball while pulling back. */
+export function drawPowerMeter(ctx, view, cue, power) {
+  const [x, y] = view.toScreen(cue[0], cue[1]);
+  const h = Math.max(40, view.scale * 0.25);
+  const w = Math.max(6, view.scale * 0.02);
+  const left = x + view.scale * 0.08;
+  const top = y - h / 2;
+  ctx.save();
+  ctx.fillStyle = 'rgba(0,0,0,0.55)';
+  ctx.fillRect(left, top, w, h);
+  const g = ctx.createLinearGradient(0, top + h, 0, top);
+  g.addColorStop(0, '#4ade80');
+  g.addColorStop(0.6, '#facc15');
+  g.addColorStop(1, '#ef4444');
+  ctx.fillStyle = g;
+  ctx.fillRect(left, top + h * (1 - power), w, h * power);
+  ctx.strokeStyle = 'rgba(255,255,255,0.6)';
+  ctx.strokeRect(left, top, w, h);
+  ctx.restore();
+}

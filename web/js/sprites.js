@@ -1,0 +1,234 @@
+/**
+ * Ball sprites: each ball pre-rendered as N cels of one turn of rolling, composited the way
+ * the seed paper did it with bitmaps (a mask ANDed with the background, the sprite ORed on
+ * top), here with canvas alpha compositing:
+ *
+ *  - a cel is the ball's painted surface (colour, stripe, number disc) seen from above after
+ *    rolling k/N of a turn towards the sprite's +x; it is cut out by a round mask
+ *    (`destination-in`), so only the disc is drawn;
+ *  - the shading (limb darkening, the light's highlight) is one more sprite drawn over the
+ *    cel, so the light stays put while the surface turns;
+ *  - a soft shadow sprite is drawn under it.
+ *
+ * At draw time the cel is rotated to the ball's direction of travel; the server streams
+ * which cel to show, so a rolling ball turns and a stopped ball stops turning.
+ */
+
+import { ballColor, isStripe, CUE } from './balls.js';
+
+export const CELS = 16;
+const NUMBER_ANGLE = 0.5; // angular radius of the number disc (rad)
+const STRIPE_HALF = 0.5; // |b . S| below this is the coloured band
+const DOT_ANGLE = 0.13; // the cue ball's red dots
+const TILT = 0.3; // the number pole leans towards the sprite's +y so it shows more often
+
+const P = [0, Math.sin(TILT), Math.cos(TILT)]; // number pole (body frame)
+const E1 = [1, 0, 0]; // tangent basis at the pole: decal x
+const E2 = [0, Math.cos(TILT), -Math.sin(TILT)]; // decal y (down the sprite)
+const S = [1, 0, 0]; // stripe axis: the band holds both number poles
+const CUE_DOTS = [P, [-P[0], -P[1], -P[2]], S, [-1, 0, 0], E2, [-E2[0], -E2[1], -E2[2]]];
+
+const dot3 = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+
+export function hexToRgb(hex) {
+  const v = parseInt(hex.slice(1), 16);
+  return [(v >> 16) & 255, (v >> 8) & 255, v & 255];
+}
+
+/**
+ * The body point seen at sprite normal n = (u, v, w) after rolling `theta` radians towards
+ * +u (rotation about the sprite's v axis).
+ */
+export function bodyPoint(u, v, w, theta) {
+  const c = Math.cos(theta);
+  const s = Math.sin(theta);
+  return [c * u - s * w, v, s * u + c * w];
+}
+
+/**
+ * What paints body point b of ball `id`: returns {color: [r, g, b], decal: null | [x, y]}
+ * where `decal` are number-disc coordinates in [-1, 1] when b is on a number disc.
+ */
+export function surfaceAt(id, b) {
+  if (id === CUE) {
+    for (const d of CUE_DOTS) {
+      if (dot3(b, d) > Math.cos(DOT_ANGLE)) return { color: [200, 30, 30], decal: null };
+    }
+    return { color: hexToRgb(ballColor(0)), decal: null };
+  }
+  const sinA = Math.sin(NUMBER_ANGLE);
+  for (const sign of [1, -1]) {
+    if (sign * dot3(b, P) > Math.cos(NUMBER_ANGLE)) {
+      return { color: [250, 248, 240], decal: [(sign * dot3(b, E1)) / sinA, dot3(b, E2) / sinA] };
+    }
+  }
+  if (isStripe(id) && Math.abs(dot3(b, S)) > STRIPE_HALF) {
+    return { color: [250, 248, 240], decal: null };
+  }
+  return { color: hexToRgb(ballColor(id)), decal: null };
+}
+
+function makeCanvas(w, h) {
+  if (typeof OffscreenCanvas !== 'undefined') return new OffscreenCanvas(w, h);
+  const c = document.createElement('canvas');
+  c.width = w;
+  c.height = h;
+  return c;
+}
+
+/** Coverage maps (0..1) of each number 1..15 painted in a small square. */
+function numberDecals(size) {
+  const decals = {};
+  const c = makeCanvas(size, size);
+  const ctx = c.getContext('2d');
+  for (let n = 1; n <= 15; n++) {
+    ctx.clearRect(0, 0, size, size);
+    ctx.fillStyle = '#000';
+    ctx.textAlign = 'center';
+    ctx.textBaseline = 'middle';
+    const text = String(n);
+    ctx.font = `bold ${Math.round(size * (text.length > 1 ? 0.62 : 0.74))}px `
+      + 'system-ui, "DejaVu Sans", Arial, sans-serif';
+    ctx.fillText(text, size / 2, size / 2 + size * 0.04);
+    const data = ctx.getImageData(0, 0, size, size).data;
+    const cov = new Float32Array(size * size);
+    for (let i = 0; i < size * size; i++) cov[i] = data[i * 4 + 3] / 255;
+    decals[n] = cov;
+  }
+  return decals;
+}
+
+function sampleDecal(cov, size, x, y) {
+  const px = Math.floor(((x + 1) / 2) * size);
+  const py = Math.floor(((y + 1) / 2) * size);
+  if (px < 0 || py < 0 || px >= size || py >= size) return 0;
+  return cov[py * size + px];
+}
+
+/** A round mask of radius r (device pixels) in a square of side `side`. */
+function roundMask(side, r) {
+  const m = makeCanvas(side, side);
+  const ctx = m.getContext('2d');
+  ctx.fillStyle = '#fff';
+  ctx.beginPath();
+  ctx.arc(side / 2, side / 2, r, 0, Math.PI * 2);
+  ctx.fill();
+  return m;
+}
+
+/** The N cels of one ball: canvases of side `side` with the ball of radius r centred. */
+function ballCels(id, side, r, decals, decalSize, mask) {
+  const cels = [];
+  for (let k = 0; k < CELS; k++) {
+    const theta = (2 * Math.PI * k) / CELS;
+    const surface = makeCanvas(side, side);
+    const ctx = surface.getContext('2d');
+    const img = ctx.createImageData(side, side);
+    const data = img.data;
+    for (let py = 0; py < side; py++) {
+      for (let px = 0; px < side; px++) {
+        let u = (px + 0.5 - side / 2) / r;
+        let v = (py + 0.5 - side / 2) / r;
+        const q = u * u + v * v;
+        if (q > 1.2) continue; // well outside the disc: the mask removes it anyway
+        if (q > 1) { const n = Math.sqrt(q); u /= n; v /= n; }
+        const w = Math.sqrt(Math.max(0, 1 - u * u - v * v));
+        const b = bodyPoint(u, v, w, theta);
+        const { color, decal } = surfaceAt(id, b);
+        let [cr, cg, cb] = color;
+        if (decal && decals[id]) {
+          const ink = sampleDecal(decals[id], decalSize, decal[0], decal[1]);
+          cr *= 1 - ink; cg *= 1 - ink; cb *= 1 - ink;
+          cr += 20 * ink; cg += 20 * ink; cb += 20 * ink;
+        }
+        const i = (py * side + px) * 4;
+        data[i] = cr; data[i + 1] = cg; data[i + 2] = cb; data[i + 3] = 255;
+      }
+    }
+    ctx.putImageData(img, 0, 0);
+    // The mask: keep the surface only where the disc is (the paper's AND).
+    ctx.globalCompositeOperation = 'destination-in';
+    ctx.drawImage(mask, 0, 0);
+    ctx.globalCompositeOperation = 'source-over';
+    cels.push(surface);
+  }
+  return cels;
+}
+
+/** Light and shade over the disc, fixed in screen space (light from the top left). */
+function shadeSprite(side, r, mask) {
+  const c = makeCanvas(side, side);
+  const ctx = c.getContext('2d');
+  const m = side / 2;
+  const limb = ctx.createRadialGradient(m - r * 0.3, m - r * 0.35, r * 0.1, m, m, r * 1.02);
+  limb.addColorStop(0, 'rgba(255,255,255,0.10)');
+  limb.addColorStop(0.55, 'rgba(0,0,0,0)');
+  limb.addColorStop(0.85, 'rgba(0,0,0,0.22)');
+  limb.addColorStop(1, 'rgba(0,0,0,0.55)');
+  ctx.fillStyle = limb;
+  ctx.fillRect(0, 0, side, side);
+  const spec = ctx.createRadialGradient(m - r * 0.38, m - r * 0.42, 0, m - r * 0.38,
+    m - r * 0.42, r * 0.38);
+  spec.addColorStop(0, 'rgba(255,255,255,0.95)');
+  spec.addColorStop(0.35, 'rgba(255,255,255,0.45)');
+  spec.addColorStop(1, 'rgba(255,255,255,0)');
+  ctx.fillStyle = spec;
+  ctx.fillRect(0, 0, side, side);
+  const bounce = ctx.createRadialGradient(m + r * 0.45, m + r * 0.5, 0, m + r * 0.45,
+    m + r * 0.5, r * 0.5);
+  bounce.addColorStop(0, 'rgba(255,255,255,0.18)');
+  bounce.addColorStop(1, 'rgba(255,255,255,0)');
+  ctx.fillStyle = bounce;
+  ctx.fillRect(0, 0, side, side);
+  ctx.globalCompositeOperation = 'destination-in';
+  ctx.drawImage(mask, 0, 0);
+  return c;
+}
+
+function shadowSprite(side, r) {
+  const c = makeCanvas(side, side);
+  const ctx = c.getContext('2d');
+  const m = side / 2;
+  const g = ctx.createRadialGradient(m, m, r * 0.2, m, m, r * 1.25);
+  g.addColorStop(0, 'rgba(0,0,0,0.55)');
+  g.addColorStop(0.7, 'rgba(0,0,0,0.25)');
+  g.addColorStop(1, 'rgba(0,0,0,0)');
+  ctx.fillStyle = g;
+  ctx.fillRect(0, 0, side, side);
+  return c;
+}
+
+/**
+ * Build every ball's cels for a ball radius of `radiusPx` device pixels.
+ * Returns {radius, side, cels: {id: canvas[]}, shade, shadow}.
+ */
+export function buildSprites(radiusPx, ids = [...Array(16).keys()]) {
+  const r = Math.max(4, radiusPx);
+  const side = Math.ceil(2 * r + 4);
+  const mask = roundMask(side, r);
+  const decalSize = 48;
+  const decals = numberDecals(decalSize);
+  const cels = {};
+  for (const id of ids) cels[id] = ballCels(id, side, r, decals, decalSize, mask);
+  return { radius: r, side, cels, shade: shadeSprite(side, r, mask),
+    shadow: shadowSprite(Math.ceil(side * 1.4), r) };
+}
+
+/**
+ * Draw ball `id` centred at (x, y) device pixels: shadow, the rolled cel turned to the
+ * travel direction `heading` (screen radians), then the fixed shading.
+ */
+export function drawBall(ctx, sprites, id, x, y, cel, heading, scale = 1) {
+  const cels = sprites.cels[id];
+  if (!cels) return;
+  const side = sprites.side * scale;
+  const sh = sprites.shadow.width * scale;
+  const off = sprites.radius * 0.22 * scale;
+  ctx.drawImage(sprites.shadow, x - sh / 2 + off, y - sh / 2 + off * 1.2, sh, sh);
+  ctx.save();
+  ctx.translate(x, y);
+  ctx.rotate(heading);
+  ctx.drawImage(cels[((cel % CELS) + CELS) % CELS], -side / 2, -side / 2, side, side);
+  ctx.restore();
+  ctx.drawImage(sprites.shade, x - side / 2, y - side / 2, side, side);
+}

@@ -1,0 +1,223 @@
+/**
+ * The client's model of the room, reduced from server messages (docs/protocol.md).
+ *
+ * `reduce(state, msg, now)` returns `{state, effects}`: a new state (the old one is never
+ * modified) and the side effects the shell must carry out (feed the frame player, play a
+ * sound, ask for a `sync`). Pure: no DOM, no sockets, so it is tested with `node --test`.
+ */
+
+import { groupBalls } from './balls.js';
+
+const MM = 1000;
+
+export function initialState({ roomId = null, name = '' } = {}) {
+  return {
+    roomId,
+    name,
+    connection: 'connecting', // connecting | open | reconnecting | closed
+    me: { seat: null, role: 'spectator' },
+    tickHz: 120,
+    frameEvery: 6,
+    seq: null, // last room seq seen
+    lastSyncAt: -Infinity,
+    room: null,
+    phase: 'waiting',
+    table: null,
+    balls: [], // at rest: [{id, x, y, cel}] metres
+    shot: null, // id of the shot being streamed
+    lastFrameTick: -1,
+    clock: null, // {seat, remaining, limit, at}: `at` = local time the message came
+    grace: [],
+    match: null,
+    outcome: '', // last outcome in words
+    lastResult: null,
+    chat: [],
+    aim: null, // relayed aim of the player at the table {seat, angle, power, tip, at}
+    error: null, // {code, message, at}
+  };
+}
+
+/** Balls of a message in the wire format [id, x_mm, y_mm, cel] -> {id, x, y, cel} metres. */
+export function decodeBalls(list) {
+  return (list ?? []).map(([id, x, y, cel]) => ({ id, x: x / MM, y: y / MM, cel }));
+}
+
+const SEQUENCED = new Set(['state', 'frame', 'event', 'shot_result', 'chat', 'presence']);
+const SYNC_COOLDOWN = 1.0; // seconds between two sync requests
+
+/**
+ * Check the room sequence: returns [newSeq, gap]. `state` resets the counter (it is the
+ * whole truth); a jump of more than one elsewhere is a gap.
+ */
+export function checkSeq(lastSeq, msg) {
+  if (!SEQUENCED.has(msg.type) || typeof msg.seq !== 'number') return [lastSeq, false];
+  if (msg.type === 'state' || lastSeq === null) return [msg.seq, false];
+  if (msg.seq <= lastSeq) return [lastSeq, false]; // duplicate/old: ignore for counting
+  return [msg.seq, msg.seq > lastSeq + 1];
+}
+
+export function reduce(state, msg, now = 0) {
+  const effects = [];
+  if (!msg || typeof msg !== 'object') return { state, effects };
+  const [seq, gap] = checkSeq(state.seq, msg);
+  let s = { ...state, seq };
+  if (gap && now - s.lastSyncAt > SYNC_COOLDOWN) {
+    // A frame gap alone is harmless, but a missed state/result is not: resync either way.
+    effects.push({ kind: 'sync' });
+    s.lastSyncAt = now;
+  }
+  switch (msg.type) {
+    case 'welcome':
+      s.me = { seat: msg.seat ?? null, role: msg.role ?? 'spectator', name: msg.name };
+      s.tickHz = msg.tick_hz ?? s.tickHz;
+      s.frameEvery = msg.frame_every ?? s.frameEvery;
+      s.seq = msg.seq ?? s.seq;
+      s.connection = 'open';
+      break;
+    case 'state': {
+      s.room = msg.room ?? s.room;
+      s.phase = msg.phase ?? s.phase;
+      s.table = msg.table ?? s.table;
+      s.balls = decodeBalls(msg.balls);
+      s.clock = msg.clock ? { ...msg.clock, at: now } : null;
+      s.grace = msg.grace ?? [];
+      s.match = msg.match ?? null;
+      const lo = s.match?.last_outcome;
+      if (lo?.message) s.outcome = lo.message;
+      if (s.phase === 'rolling' && msg.shot) {
+        if (s.shot !== msg.shot.id) {
+          s.shot = msg.shot.id;
+          s.lastFrameTick = -1;
+          effects.push({ kind: 'shot', shot: msg.shot.id, tick: msg.shot.tick, balls: s.balls });
+        }
+      } else {
+        s.shot = null;
+        effects.push({ kind: 'rest', balls: s.balls });
+      }
+      if (s.phase !== 'aiming') s.aim = null;
+      break;
+    }
+    case 'frame': {
+      if (msg.shot !== s.shot) {
+        s.shot = msg.shot;
+        s.lastFrameTick = -1;
+        s.phase = 'rolling';
+        s.aim = null;
+        effects.push({ kind: 'shot', shot: msg.shot, tick: 0, balls: null });
+      }
+      if (msg.tick <= s.lastFrameTick) break; // stale
+      s.lastFrameTick = msg.tick;
+      s.clock = null;
+      const balls = decodeBalls(msg.b);
+      effects.push({ kind: 'frame', t: msg.tick / s.tickHz, balls, last: !!msg.last });
+      if (msg.last) s.balls = balls;
+      break;
+    }
+    case 'event':
+      effects.push({ kind: 'sound', sound: msg.kind, speed: msg.speed ?? 0, t: msg.t ?? 0,
+        shot: msg.shot });
+      break;
+    case 'shot_result': {
+      s.lastResult = msg;
+      s.outcome = msg.outcome?.message ?? s.outcome;
+      if (s.match) {
+        s.match = { ...s.match, score: msg.score ?? s.match.score };
+      }
+      effects.push({ kind: 'result', result: msg });
+      break;
+    }
+    case 'aim':
+      s.aim = { seat: msg.seat, angle: msg.angle, power: msg.power ?? 0,
+        tip: msg.tip ?? [0, 0], at: now };
+      break;
+    case 'chat':
+      s.chat = [...s.chat, { seat: msg.seat, name: msg.name, text: msg.text }].slice(-50);
+      break;
+    case 'presence':
+      if (s.room) s.room = { ...s.room, players: msg.players ?? s.room.players,
+        spectators: msg.spectators ?? s.room.spectators };
+      s.grace = msg.grace ?? s.grace;
+      break;
+    case 'error':
+      s.error = { code: msg.code, message: msg.message, ref: msg.ref ?? null, at: now };
+      break;
+    default:
+      break;
+  }
+  return { state: s, effects };
+}
+
+/** Local connection status changes (from the socket wrapper). */
+export function setConnection(state, connection) {
+  return { ...state, connection };
+}
+
+// ---- derived views used by the HUD and the input ------------------------------------
+
+export function playerName(state, seat) {
+  const p = state.room?.players?.find((q) => q && q.seat === seat);
+  return p?.name ?? null;
+}
+
+/** Whose turn it is (seat) or null when nobody may act. */
+export function turnSeat(state) {
+  if (state.phase !== 'aiming' || !state.match) return null;
+  if (state.match.decision) return state.match.decision.seat;
+  return state.match.turn ?? null;
+}
+
+/** True when this client may act now (aim, shoot, place, call). */
+export function isMyTurn(state) {
+  return state.me.role === 'player' && state.me.seat !== null
+    && turnSeat(state) === state.me.seat && !state.match?.over;
+}
+
+/** Seconds left on the shot clock at local time `now` (null when no clock runs). */
+export function clockRemaining(state, now) {
+  if (!state.clock) return null;
+  return Math.max(0, state.clock.remaining - (now - state.clock.at));
+}
+
+/** The group ("solids" | "stripes") of a seat, or null while the table is open. */
+export function groupOf(state, seat) {
+  const g = state.match?.groups;
+  if (!g) return null;
+  return g[seat] ?? g[String(seat)] ?? null;
+}
+
+/** Ball ids still on the table for a seat's group. */
+export function ballsLeft(state, seat) {
+  const group = groupOf(state, seat);
+  if (!group) return [];
+  const onTable = new Set(state.balls.map((b) => b.id));
+  return groupBalls(group).filter((id) => onTable.has(id));
+}
+
+/** Object balls no longer on the table (pocketed), in number order. */
+export function pocketedBalls(state) {
+  if (!state.match || !state.table) return [];
+  const onTable = new Set(state.balls.map((b) => b.id));
+  const all = state.match.kind === 'nine_ball'
+    ? [1, 2, 3, 4, 5, 6, 7, 8, 9]
+    : [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15];
+  return all.filter((id) => !onTable.has(id));
+}
+
+/** The score line "Ana 1 – 0 Ben (race to 3)". */
+export function scoreText(state) {
+  const m = state.match;
+  if (!m || !m.score) return '';
+  const a = playerName(state, 0) ?? 'Player 1';
+  const b = playerName(state, 1);
+  if (m.kind === 'practice' || b === null) return `${a} · practice`;
+  return `${a} ${m.score[0]} – ${m.score[1]} ${b} (race to ${m.race_to ?? 1})`;
+}
+
+/** The match winner's name when the match is over, else null. */
+export function winnerName(state) {
+  const m = state.match;
+  if (!m) return null;
+  const w = m.match_winner ?? (m.over ? m.winner : null);
+  if (state.phase !== 'over' && !m.match_over) return null;
+  return w === null || w === undefined ? null : playerName(state, w);
+}

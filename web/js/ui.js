@@ -1,0 +1,183 @@
+/**
+ * The DOM around the canvas: lobby list, HUD (players, turn and clock, groups and balls
+ * left, pocketed balls, score, outcome, connection), chat, buttons, winner banner.
+ * Written to only touch the DOM when a shown value changes.
+ */
+
+import { ballColor, isStripe } from './balls.js';
+import {
+  playerName, turnSeat, isMyTurn, clockRemaining, groupOf, ballsLeft, pocketedBalls,
+  scoreText, winnerName,
+} from './state.js';
+
+export const $ = (id) => document.getElementById(id);
+
+export function setText(el, text) {
+  if (el && el.textContent !== text) el.textContent = text;
+}
+
+function setHidden(el, hidden) {
+  if (el && el.hidden !== hidden) el.hidden = hidden;
+}
+
+/** A small ball chip for the HUD (colour, stripe, number). */
+export function miniBall(id) {
+  const el = document.createElement('span');
+  el.className = 'mini';
+  const c = ballColor(id);
+  el.style.background = isStripe(id)
+    ? `linear-gradient(#f7f3e6 0 22%, ${c} 22% 78%, #f7f3e6 78%)` : c;
+  el.textContent = id ? String(id) : '';
+  if (id === 8 || [2, 4, 7].includes(id)) el.style.color = '#fff';
+  el.title = `Ball ${id}`;
+  el.dataset.ball = String(id);
+  return el;
+}
+
+function setBalls(el, ids) {
+  const key = ids.join(',');
+  if (el.dataset.key === key) return;
+  el.dataset.key = key;
+  el.replaceChildren(...ids.map(miniBall));
+}
+
+const GAME_NAMES = { eight_ball: '8-ball', nine_ball: '9-ball', practice: 'Practice' };
+
+/** Fill the lobby's room list. */
+export function renderRooms(list, rooms, { onJoin, onWatch }) {
+  const items = rooms.map((r) => {
+    const li = document.createElement('li');
+    li.dataset.room = r.room_id;
+    const what = document.createElement('div');
+    what.className = 'what';
+    const players = (r.players ?? []).map((p) => p ?? 'free seat').join(' vs ');
+    const title = document.createElement('div');
+    title.textContent = `${GAME_NAMES[r.game] ?? r.game}`
+      + (r.game !== 'practice' ? ` · race to ${r.race_to}` : '');
+    const who = document.createElement('div');
+    who.className = 'who';
+    who.textContent = `${players}${r.spectators ? ` · ${r.spectators} watching` : ''}`;
+    what.append(title, who);
+    const tag = document.createElement('span');
+    tag.className = `tag ${r.status}`;
+    tag.textContent = r.status;
+    li.append(what, tag);
+    if ((r.players ?? []).some((p) => p === null)) {
+      const join = document.createElement('button');
+      join.textContent = 'Join';
+      join.className = 'primary';
+      join.dataset.testid = 'join';
+      join.addEventListener('click', () => onJoin(r.room_id));
+      li.append(join);
+    }
+    const watch = document.createElement('button');
+    watch.textContent = 'Watch';
+    watch.dataset.testid = 'watch';
+    watch.addEventListener('click', () => onWatch(r.room_id));
+    li.append(watch);
+    return li;
+  });
+  list.replaceChildren(...items);
+}
+
+/** Update the HUD from the state (called every frame; cheap when nothing changed). */
+export function renderHud(state, now) {
+  const m = state.match;
+  const mySeat = state.me.role === 'player' ? state.me.seat : null;
+  const turn = turnSeat(state);
+  for (const seat of [0, 1]) {
+    const el = $(`player-${seat}`);
+    const p = state.room?.players?.find((q) => q && q.seat === seat);
+    const exists = seat < (state.room?.seats ?? 2);
+    setHidden(el, !exists);
+    const name = p?.name ?? (exists ? 'waiting for a player…' : '');
+    setText(el.querySelector('.pname'), name + (seat === mySeat ? ' (you)' : ''));
+    el.classList.toggle('connected', !!p?.connected);
+    el.classList.toggle('turn', turn === seat);
+    const group = groupOf(state, seat);
+    setText(el.querySelector('.group'), group ?? '');
+    setBalls(el.querySelector('.left'), ballsLeft(state, seat));
+  }
+
+  const turnEl = $('turn');
+  let text = 'Connecting…';
+  const winner = winnerName(state);
+  if (state.phase === 'waiting') {
+    text = 'Waiting for an opponent…';
+  } else if (state.phase === 'over' || winner) {
+    text = winner ? `${winner} wins the match` : 'Match over';
+  } else if (state.phase === 'rolling') {
+    const shooter = m ? playerName(state, m.turn) : null;
+    text = shooter ? `${shooter} shoots…` : 'Balls rolling…';
+  } else if (turn !== null) {
+    const who = turn === mySeat ? 'Your turn' : `${playerName(state, turn) ?? 'Player'}'s turn`;
+    const left = clockRemaining(state, now);
+    const extras = [];
+    if (m?.decision) extras.push(m.decision.prompt ?? 'decide');
+    else if (m?.ball_in_hand) extras.push('ball in hand');
+    if (m?.requires_call && m?.called_pocket == null) extras.push('call a pocket for the 8');
+    text = `${who}${extras.length ? ` · ${extras.join(' · ')}` : ''}`
+      + (left !== null ? ` · ${Math.ceil(left)} s` : '');
+  }
+  setText(turnEl, text);
+  turnEl.dataset.seat = turn === null ? '' : String(turn);
+  turnEl.dataset.phase = state.phase;
+  turnEl.classList.toggle('mine', isMyTurn(state));
+
+  setText($('score'), scoreText(state));
+  setText($('outcome'), state.outcome || (state.phase === 'waiting'
+    ? 'Send the link to a friend to start.' : ''));
+  setBalls($('pocketed'), pocketedBalls(state));
+
+  const conn = $('connection');
+  setText(conn, state.connection);
+  conn.className = `conn ${state.connection}`;
+  setText($('role'), state.me.role === 'player' ? `seat ${state.me.seat + 1}` : 'spectator');
+
+  const isPlayer = state.me.role === 'player';
+  const practice = m?.kind === 'practice' || state.room?.game === 'practice';
+  setHidden($('rematch'), !(isPlayer && state.phase === 'over'));
+  setHidden($('concede'), !(isPlayer && !practice && (state.phase === 'aiming'
+    || state.phase === 'rolling')));
+  setHidden($('rerack'), !(isPlayer && practice));
+
+  const banner = $('banner');
+  setHidden(banner, !winner);
+  if (winner) setText(banner, `🏆 ${winner} wins!`);
+
+  const error = state.error && now - state.error.at < 4 ? state.error.message : '';
+  setText($('toast'), error);
+  setHidden($('toast'), !error);
+}
+
+/** The decision buttons (e.g. 9-ball push-out answer), shown to the seat that decides. */
+export function renderDecision(state, onDecide) {
+  const el = $('decision');
+  const d = state.match?.decision;
+  const mine = d && state.me.role === 'player' && d.seat === state.me.seat
+    && state.phase === 'aiming';
+  const key = mine ? JSON.stringify(d) : '';
+  if (el.dataset.key === key) return;
+  el.dataset.key = key;
+  if (!mine) { el.replaceChildren(); return; }
+  el.replaceChildren(...d.options.map((opt) => {
+    const b = document.createElement('button');
+    b.textContent = opt.replace(/_/g, ' ');
+    b.addEventListener('click', () => onDecide(opt));
+    return b;
+  }));
+}
+
+export function renderChat(state) {
+  const log = $('chat-log');
+  if (log.dataset.count === String(state.chat.length)) return;
+  log.dataset.count = String(state.chat.length);
+  log.replaceChildren(...state.chat.map((c) => {
+    const li = document.createElement('li');
+    const b = document.createElement('b');
+    b.textContent = `${c.name ?? 'spectator'}: `;
+    li.append(b, document.createTextNode(c.text));
+    return li;
+  }));
+  log.scrollTop = log.scrollHeight;
+}

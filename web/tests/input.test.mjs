@@ -1,0 +1,72 @@
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { AimController, MAX_PULL } from '../js/input.js';
+import { speedFromPower } from '../js/geometry.js';
+import { TABLE } from './fixtures.mjs';
+
+const ctx = (extra = {}) => ({ table: TABLE, balls: [{ id: 0, x: 0.6, y: 0.6 },
+  { id: 1, x: 1.9, y: 0.6 }], cue: [0.6, 0.6], myTurn: true, ballInHand: null,
+  requiresCall: false, ...extra });
+
+test('hover aims at the pointer; press, pull back and release shoots', () => {
+  const a = new AimController();
+  a.handle({ type: 'move', x: 1.6, y: 0.9, pointerType: 'mouse' }, ctx());
+  const angle = Math.atan2(0.3, 1.0);
+  assert.ok(Math.abs(a.angle - angle) < 1e-12);
+  assert.deepEqual(a.handle({ type: 'down', x: 1.6, y: 0.9 }, ctx()), []);
+  const back = MAX_PULL / 2;
+  a.handle({ type: 'move', x: 1.6 - back * Math.cos(angle), y: 0.9 - back * Math.sin(angle) },
+    ctx());
+  assert.ok(Math.abs(a.power - 0.5) < 1e-9);
+  const out = a.handle({ type: 'up', x: 1.6 - back * Math.cos(angle),
+    y: 0.9 - back * Math.sin(angle) }, ctx());
+  assert.equal(out.length, 1);
+  assert.equal(out[0].type, 'shoot');
+  assert.ok(Math.abs(out[0].angle - angle) < 1e-5);
+  assert.ok(Math.abs(out[0].speed - speedFromPower(0.5)) < 1e-5);
+  assert.deepEqual(out[0].tip, [0, 0]);
+  assert.equal(a.mode, 'idle');
+});
+
+test('release without pulling back is a cancel; not my turn does nothing', () => {
+  const a = new AimController();
+  a.handle({ type: 'down', x: 1.6, y: 0.6 }, ctx());
+  assert.deepEqual(a.handle({ type: 'up', x: 1.61, y: 0.6 }, ctx()), []);
+  const b = new AimController();
+  b.handle({ type: 'down', x: 1.6, y: 0.6 }, ctx({ myTurn: false }));
+  b.handle({ type: 'move', x: 1.0, y: 0.6 }, ctx({ myTurn: false }));
+  assert.deepEqual(b.handle({ type: 'up', x: 1.0, y: 0.6 }, ctx({ myTurn: false })), []);
+});
+
+test('ball in hand: drag the cue ball, the place is clamped behind the head string', () => {
+  const a = new AimController();
+  const c = ctx({ ballInHand: 'behind_head_string' });
+  a.handle({ type: 'down', x: 0.61, y: 0.6 }, c);
+  assert.equal(a.mode, 'placing');
+  a.handle({ type: 'move', x: 1.5, y: 0.3 }, c);
+  const out = a.handle({ type: 'up', x: 1.5, y: 0.3 }, c);
+  assert.deepEqual(out, [{ type: 'place_cue', x: Math.round(TABLE.head_string * 1e6) / 1e6,
+    y: 0.3 }]);
+});
+
+test('ball in hand on top of another ball is not sent', () => {
+  const a = new AimController();
+  const c = ctx({ ballInHand: 'anywhere' });
+  a.handle({ type: 'down', x: 0.6, y: 0.6 }, c);
+  a.handle({ type: 'move', x: 1.9, y: 0.61 }, c);
+  assert.deepEqual(a.handle({ type: 'up', x: 1.9, y: 0.61 }, c), []);
+});
+
+test('calling the 8: a click on a pocket sends its index', () => {
+  const a = new AimController();
+  const out = a.handle({ type: 'down', x: 2.56, y: 1.29 }, ctx({ requiresCall: true }));
+  assert.deepEqual(out, [{ type: 'call', pocket: 3 }]);
+});
+
+test('the spin tip goes out with the shot', () => {
+  const a = new AimController();
+  a.tip = [0.1, -0.2];
+  a.handle({ type: 'down', x: 1.6, y: 0.6 }, ctx());
+  const out = a.handle({ type: 'up', x: 1.2, y: 0.6 }, ctx());
+  assert.deepEqual(out[0].tip, [0.1, -0.2]);
+});

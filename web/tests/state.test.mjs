@@ -1,0 +1,165 @@
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import {
+  initialState, reduce, checkSeq, decodeBalls, isMyTurn, turnSeat, clockRemaining, ballsLeft,
+  pocketedBalls, scoreText, winnerName,
+} from '../js/state.js';
+
+const room = {
+  room_id: 'abc', game: 'eight_ball', race_to: 3, seats: 2, status: 'playing',
+  players: [{ seat: 0, name: 'Ana', connected: true }, { seat: 1, name: 'Ben', connected: true }],
+  spectators: 0,
+};
+const match = (extra = {}) => ({ kind: 'eight_ball', race_to: 3, score: [1, 0], turn: 0,
+  ball_in_hand: null, groups: null, requires_call: false, called_pocket: null, decision: null,
+  over: false, winner: null, last_outcome: null, ...extra });
+const stateMsg = (seq, extra = {}) => ({ type: 'state', seq, room, phase: 'aiming',
+  table: { length: 2.54, width: 1.27, ball_radius: 0.028575 },
+  balls: [[0, 635, 635, 0], [1, 1905, 635, 3], [9, 2000, 600, 0]], shot: null,
+  clock: { seat: 0, remaining: 50, limit: 60 }, grace: [], match: match(), ...extra });
+
+function run(msgs, start = initialState()) {
+  let s = start;
+  const effects = [];
+  for (const [msg, now] of msgs) {
+    const r = reduce(s, msg, now ?? 0);
+    s = r.state;
+    effects.push(...r.effects);
+  }
+  return { s, effects };
+}
+
+test('wire balls in millimetres become metres', () => {
+  assert.deepEqual(decodeBalls([[3, 1270, 635, 15]]), [{ id: 3, x: 1.27, y: 0.635, cel: 15 }]);
+});
+
+test('welcome then state: seat, table, balls at rest, my turn', () => {
+  const { s, effects } = run([
+    [{ type: 'welcome', seat: 0, role: 'player', name: 'Ana', seq: 4, tick_hz: 120,
+      frame_every: 6 }],
+    [stateMsg(4)],
+  ]);
+  assert.equal(s.me.seat, 0);
+  assert.equal(s.connection, 'open');
+  assert.equal(s.balls.length, 3);
+  assert.equal(s.balls[1].x, 1.905);
+  assert.ok(isMyTurn(s));
+  assert.deepEqual(effects.map((e) => e.kind), ['rest']);
+});
+
+test('a spectator never has the turn', () => {
+  const { s } = run([[{ type: 'welcome', seat: null, role: 'spectator', seq: 1 }],
+    [stateMsg(1)]]);
+  assert.equal(turnSeat(s), 0);
+  assert.equal(isMyTurn(s), false);
+});
+
+test('frames of a new shot start playback, in seconds from the tick', () => {
+  const { s, effects } = run([
+    [{ type: 'welcome', seat: 1, role: 'player', seq: 1, tick_hz: 120 }],
+    [stateMsg(1)],
+    [{ type: 'frame', seq: 2, shot: 7, tick: 6, b: [[0, 700, 635, 2]] }],
+    [{ type: 'frame', seq: 3, shot: 7, tick: 12, b: [[0, 760, 635, 5]], last: true }],
+  ]);
+  const kinds = effects.map((e) => e.kind);
+  assert.deepEqual(kinds, ['rest', 'shot', 'frame', 'frame']);
+  assert.equal(effects[2].t, 0.05);
+  assert.equal(effects[3].last, true);
+  assert.equal(s.phase, 'rolling');
+  assert.equal(s.balls[0].x, 0.76, 'the last frame is the table at rest');
+  assert.equal(s.clock, null);
+});
+
+test('a stale or repeated frame is dropped', () => {
+  const { effects } = run([
+    [stateMsg(1)],
+    [{ type: 'frame', seq: 2, shot: 7, tick: 12, b: [] }],
+    [{ type: 'frame', seq: 3, shot: 7, tick: 6, b: [] }],
+  ]);
+  assert.equal(effects.filter((e) => e.kind === 'frame').length, 1);
+});
+
+test('a sequence gap asks for a sync (once per cooldown); a state resets the count', () => {
+  assert.deepEqual(checkSeq(5, { type: 'frame', seq: 6 }), [6, false]);
+  assert.deepEqual(checkSeq(5, { type: 'frame', seq: 8 }), [8, true]);
+  assert.deepEqual(checkSeq(5, { type: 'aim' }), [5, false]);
+  assert.deepEqual(checkSeq(9, { type: 'state', seq: 3 }), [3, false]);
+  const { effects } = run([
+    [stateMsg(10), 0],
+    [{ type: 'frame', seq: 13, shot: 1, tick: 6, b: [] }, 1.0],
+    [{ type: 'frame', seq: 15, shot: 1, tick: 12, b: [] }, 1.2],
+    [{ type: 'frame', seq: 18, shot: 1, tick: 18, b: [] }, 2.5],
+  ]);
+  assert.equal(effects.filter((e) => e.kind === 'sync').length, 2);
+});
+
+test('events become sounds with their speed and time; aim is relayed', () => {
+  const { s, effects } = run([
+    [stateMsg(1)],
+    [{ type: 'aim', seat: 1, angle: 1.5, power: 0.3, tip: [0, 0.1] }, 3],
+    [{ type: 'event', seq: 2, shot: 3, tick: 10, t: 0.0833, kind: 'ball', ids: [0, 1],
+      speed: 3.4, target: -1 }],
+  ]);
+  assert.deepEqual(s.aim, { seat: 1, angle: 1.5, power: 0.3, tip: [0, 0.1], at: 3 });
+  const sound = effects.find((e) => e.kind === 'sound');
+  assert.equal(sound.sound, 'ball');
+  assert.equal(sound.speed, 3.4);
+  assert.equal(sound.t, 0.0833);
+});
+
+test('shot_result sets the outcome in words and the score', () => {
+  const { s } = run([[stateMsg(1)], [{ type: 'shot_result', seq: 2, shot: 1, cause: 'shot',
+    outcome: { message: 'Foul: scratch. Ball in hand for Ben.' }, score: [1, 1],
+    match_over: false }]]);
+  assert.equal(s.outcome, 'Foul: scratch. Ball in hand for Ben.');
+  assert.equal(scoreText(s), 'Ana 1 – 1 Ben (race to 3)');
+});
+
+test('the shot clock counts down locally from the state', () => {
+  const { s } = run([[stateMsg(1), 100]]);
+  assert.equal(clockRemaining(s, 100), 50);
+  assert.equal(clockRemaining(s, 110.5), 39.5);
+  assert.equal(clockRemaining(s, 500), 0);
+});
+
+test('groups: balls still to pot per seat, pocketed balls, winner', () => {
+  const { s } = run([[stateMsg(1, { match: match({ groups: { 0: 'solids', 1: 'stripes' } }) })]]);
+  assert.deepEqual(ballsLeft(s, 0), [1]);
+  assert.deepEqual(ballsLeft(s, 1), [9]);
+  assert.equal(pocketedBalls(s).length, 13);
+  assert.equal(winnerName(s), null);
+  const over = run([[stateMsg(2, { phase: 'over',
+    match: match({ over: true, winner: 1, match_winner: 1 }) })]]).s;
+  assert.equal(winnerName(over), 'Ben');
+});
+
+test('chat keeps the last 50 lines; errors are kept with their time', () => {
+  const msgs = [];
+  for (let i = 0; i < 60; i++) {
+    msgs.push([{ type: 'chat', seq: i + 2, seat: 1, name: 'Ben', text: `m${i}` }]);
+  }
+  msgs.push([{ type: 'error', code: 'not_your_turn', message: "It is Ben's turn.", ref: 'shoot' },
+    7]);
+  const { s } = run([[stateMsg(1)], ...msgs]);
+  assert.equal(s.chat.length, 50);
+  assert.equal(s.chat[49].text, 'm59');
+  assert.equal(s.error.code, 'not_your_turn');
+  assert.equal(s.error.at, 7);
+});
+
+test('joining while a shot is shown starts playback at the state`s tick', () => {
+  const { effects } = run([[stateMsg(5, { phase: 'rolling', shot: { id: 4, seat: 0, tick: 120,
+    ticks: 700 }, clock: null })]]);
+  assert.equal(effects[0].kind, 'shot');
+  assert.equal(effects[0].tick, 120);
+  assert.equal(effects[0].balls.length, 3);
+});
+
+test('garbage messages change nothing', () => {
+  const s0 = run([[stateMsg(1)]]).s;
+  for (const bad of [null, 42, 'x', { type: 'nope' }, {}]) {
+    const r = reduce(s0, bad, 0);
+    assert.deepEqual(r.effects, []);
+    assert.deepEqual(r.state.balls, s0.balls);
+  }
+});
