@@ -14,20 +14,26 @@ from server.rules.eight_ball import SOLIDS, STRIPES
 
 from .helpers import TABLE, crafted, hit, pot, rail
 
-STEPS = 40
+STEPS = 60
 
 
 def random_shot(data, game: Game):
-    """A crafted result from the current table: maybe a first contact, some rails, some
-    balls (the cue ball too) dropped in random pockets."""
-    on = game.balls.on_table_ids()
-    objects = [b for b in on if b != 0]
+    """A crafted result from the current table: usually a legal first contact, some rails,
+    some balls (the cue ball too) dropped in random pockets; the 8 and the 9 drop less
+    often, so that games last long enough to reach their later rules."""
+    objects = [b for b in game.balls.on_table_ids() if b != 0]
+    on = objects + [0] if 0 in game.balls.on_table_ids() else objects  # cue last: rarer
+    legal = game.legal_targets() or objects
     events = []
-    if objects and data.draw(st.booleans()):
-        events.append(hit(0, data.draw(st.sampled_from(objects))))
-    for ball in data.draw(st.lists(st.sampled_from(on), max_size=5)):
+    choice = data.draw(st.integers(0, 9))  # hypothesis favours 0: make it the legal case
+    if objects and choice < 9:
+        pool = legal if choice < 7 else objects
+        events.append(hit(0, data.draw(st.sampled_from(pool))))
+    for ball in data.draw(st.lists(st.sampled_from(on), min_size=1, max_size=5)):
         events.append(rail(ball))
-    dropped = data.draw(st.lists(st.sampled_from(on), max_size=4, unique=True))
+    dropped = data.draw(st.lists(st.sampled_from(on), max_size=3, unique=True))
+    if data.draw(st.integers(0, 9)) < 9:
+        dropped = [b for b in dropped if b not in (8, 9) or len(objects) == 1]
     for ball in dropped:
         events.append(pot(ball, data.draw(st.integers(0, 5))))
     return crafted(game.balls, *events)
@@ -40,7 +46,7 @@ def act(data, game: Game) -> None:
         game.decide(d.seat, data.draw(st.sampled_from(d.options)))
         return
     seat = game.turn
-    if data.draw(st.integers(0, 9)) == 0:
+    if data.draw(st.integers(0, 19)) == 0:
         game.timeout(seat)
         return
     if game.ball_in_hand:
