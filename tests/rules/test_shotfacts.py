@@ -1,0 +1,39 @@
+"""Shot facts read from the engine's events and final table."""
+
+from __future__ import annotations
+
+from server.engine import BallSet, Shot, simulate
+from server.rules.shotfacts import shot_facts
+
+from .helpers import TABLE, crafted, hit, pot, rail, straight_in
+
+
+def test_facts_of_a_real_pot() -> None:
+    placement, shot = straight_in(3, pocket=0)
+    balls = BallSet.place({**placement, 12: (1.8, 0.9)})
+    result = simulate(TABLE, balls, shot)
+    facts = shot_facts(balls, result)
+    assert facts.first_contact == 3 == result.first_contact()
+    assert facts.pocketed == (3,) and facts.pockets == {3: 0} and not facts.scratch
+
+
+def test_a_rail_counts_only_after_the_first_contact() -> None:
+    balls = BallSet.place({0: (0.5, 0.5), 1: (1.0, 0.5), 2: (1.5, 0.5)})
+    before = shot_facts(balls, crafted(balls, rail(0), hit(0, 1)))
+    after = shot_facts(balls, crafted(balls, rail(0), hit(0, 1), rail(1, 2)))
+    assert not before.rail_after_contact and after.rail_after_contact
+    assert after.first_contact == 1 and after.balls_to_rail == frozenset({1})
+
+
+def test_distinct_balls_to_a_rail_and_the_cue_ball_pocket() -> None:
+    balls = BallSet.place({0: (0.5, 0.5), 1: (1.0, 0.5), 2: (1.5, 0.5)})
+    facts = shot_facts(balls, crafted(balls, hit(0, 1), rail(1), rail(1), rail(2), rail(0),
+                                      pot(0, 4)))
+    assert facts.balls_to_rail == frozenset({1, 2})
+    assert facts.scratch and facts.pockets == {0: 4} and facts.pocketed == ()
+
+
+def test_a_miss_has_no_contact() -> None:
+    balls = BallSet.place({0: (0.5, 0.5), 1: (1.0, 1.0)})
+    facts = shot_facts(balls, simulate(TABLE, balls, Shot(-1.2, 0.5)))
+    assert facts.first_contact is None and facts.pocketed == ()
