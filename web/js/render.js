@@ -19,6 +19,42 @@ function roundRect(ctx, x, y, w, h, r) {
   ctx.closePath();
 }
 
+/** Unit direction from the middle of a pocket's mouth towards its hole. */
+export function pocketOutward(p) {
+  if (p.outward) return p.outward;
+  const mx = (p.jaws[0][0] + p.jaws[1][0]) / 2;
+  const my = (p.jaws[0][1] + p.jaws[1][1]) / 2;
+  const n = Math.hypot(p.center[0] - mx, p.center[1] - my) || 1;
+  return [(p.center[0] - mx) / n, (p.center[1] - my) / n];
+}
+
+function polygon(ctx, pts) {
+  ctx.beginPath();
+  pts.forEach(([x, y], i) => (i ? ctx.lineTo(x, y) : ctx.moveTo(x, y)));
+  ctx.closePath();
+}
+
+/**
+ * The back corners of each cushion (where it meets the wooden rail): from each jaw along
+ * the direction of that jaw's pocket until the rail line, so the cushion ends are cut like
+ * real pocket facings. Returns [[backOfStart, backOfEnd], ...] in table metres.
+ */
+export function cushionBacks(table) {
+  const near = (p, q) => Math.hypot(p[0] - q[0], p[1] - q[1]) < 1e-9;
+  const pocketAtJaw = (j) => table.pockets.find((p) => p.jaws && p.jaws.some((q) => near(q, j)));
+  return table.cushions.map((c) => {
+    const [nx, ny] = c.normal;
+    return [c.start, c.end].map((j) => {
+      const pocket = pocketAtJaw(j);
+      let [dx, dy] = pocket ? pocketOutward(pocket) : [-nx, -ny];
+      const along = -(dx * nx + dy * ny); // how fast the cut goes back into the rail
+      if (along < 0.2) { dx = -nx; dy = -ny; }
+      const t = CUSHION_WIDTH / Math.max(0.2, -(dx * nx + dy * ny));
+      return [j[0] + dx * t, j[1] + dy * t];
+    });
+  });
+}
+
 /** Draw the static table into `ctx` (already scaled to CSS pixels). */
 export function drawTable(ctx, table, view) {
   const s = view.scale;
@@ -59,55 +95,59 @@ export function drawTable(ctx, table, view) {
     ctx.fill();
   }
 
-  // Cloth (bed and under the cushions), with a soft vignette from the lamp.
+  // Pocket throats and holes: from the mouth (between the jaws) back into the rail.
+  const backs = cushionBacks(table);
+  table.pockets.forEach((p) => {
+    const [[ax, ay], [bx2, by2]] = p.jaws;
+    const [ox2, oy2] = pocketOutward(p);
+    const depth = CUSHION_WIDTH / Math.max(Math.abs(ox2), Math.abs(oy2));
+    const throat = [[ax, ay], [bx2, by2], [bx2 + ox2 * depth, by2 + oy2 * depth],
+      [ax + ox2 * depth, ay + oy2 * depth]].map(([x, y]) => view.toScreen(x, y));
+    ctx.fillStyle = '#000';
+    polygon(ctx, throat);
+    ctx.fill();
+    const [px, py] = view.toScreen(p.center[0], p.center[1]);
+    const r = p.radius * s;
+    const hole = ctx.createRadialGradient(px, py, r * 0.2, px, py, r);
+    hole.addColorStop(0, '#000');
+    hole.addColorStop(0.82, '#000');
+    hole.addColorStop(1, '#262626');
+    ctx.fillStyle = hole;
+    ctx.beginPath();
+    ctx.arc(px, py, r, 0, Math.PI * 2);
+    ctx.fill();
+  });
+
+  // Cloth on the bed, with a soft vignette from the lamp.
   const cloth = ctx.createRadialGradient(bx + bw / 2, by + bh / 2, bh * 0.1,
     bx + bw / 2, by + bh / 2, bw * 0.7);
   cloth.addColorStop(0, '#1f8a50');
   cloth.addColorStop(1, '#146339');
   ctx.fillStyle = cloth;
-  ctx.fillRect(bx - cw, by - cw, bw + 2 * cw, bh + 2 * cw);
+  // The bed runs from cushion nose to cushion nose and across each pocket's mouth line.
+  polygon(ctx, table.cushions.flatMap((c) => [c.start, c.end]).map(([x, y]) => view.toScreen(x, y)));
+  ctx.fill();
 
-  // Cushion rubber: a strip behind each nose, its ends cut back towards the pocket.
-  for (const c of table.cushions) {
-    const [sx, sy] = c.start;
-    const [ex, ey] = c.end;
-    const [nx, ny] = c.normal;
-    const len = Math.hypot(ex - sx, ey - sy);
-    const tx = (ex - sx) / len;
-    const ty = (ey - sy) / len;
-    const cut = CUSHION_WIDTH * 0.9;
-    const pts = [
-      [sx, sy], [ex, ey],
-      [ex - nx * CUSHION_WIDTH + tx * cut, ey - ny * CUSHION_WIDTH + ty * cut],
-      [sx - nx * CUSHION_WIDTH - tx * cut, sy - ny * CUSHION_WIDTH - ty * cut],
-    ].map(([x, y]) => view.toScreen(x, y));
-    ctx.fillStyle = '#176b3f';
-    ctx.beginPath();
-    pts.forEach(([x, y], i) => (i ? ctx.lineTo(x, y) : ctx.moveTo(x, y)));
-    ctx.closePath();
+  // Cushions: cloth-covered rubber from each nose back to the rail, the ends cut along the
+  // pocket's direction so the jaws open into the throat.
+  table.cushions.forEach((c, i) => {
+    const [b0, b1] = backs[i];
+    const pts = [c.start, c.end, b1, b0].map(([x, y]) => view.toScreen(x, y));
+    ctx.fillStyle = '#125a34';
+    polygon(ctx, pts);
     ctx.fill();
-    // Nose highlight.
-    ctx.strokeStyle = 'rgba(190,255,210,0.28)';
+    ctx.strokeStyle = 'rgba(190,255,210,0.3)';
     ctx.lineWidth = Math.max(1, s * 0.004);
     ctx.beginPath();
     ctx.moveTo(pts[0][0], pts[0][1]);
     ctx.lineTo(pts[1][0], pts[1][1]);
     ctx.stroke();
-  }
-
-  // Pockets: the holes, with a little depth.
-  for (const p of table.pockets) {
-    const [px, py] = view.toScreen(p.center[0], p.center[1]);
-    const r = p.radius * s;
-    const hole = ctx.createRadialGradient(px, py, r * 0.2, px, py, r);
-    hole.addColorStop(0, '#000');
-    hole.addColorStop(0.8, '#050505');
-    hole.addColorStop(1, '#2a2a2a');
-    ctx.fillStyle = hole;
+    ctx.strokeStyle = 'rgba(0,0,0,0.35)';
     ctx.beginPath();
-    ctx.arc(px, py, r, 0, Math.PI * 2);
-    ctx.fill();
-  }
+    ctx.moveTo(pts[3][0], pts[3][1]);
+    ctx.lineTo(pts[2][0], pts[2][1]);
+    ctx.stroke();
+  });
 
   // Diamonds (sights) on the rails: every eighth of the length, every quarter of the width.
   const mid = CUSHION_WIDTH + RAIL_WIDTH * 0.5;

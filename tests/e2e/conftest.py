@@ -1,0 +1,81 @@
+"""Fixtures for the browser tests: a real server on a free port and Debian's Chromium.
+
+The server runs `server.app:create_app()` under uvicorn in a thread (127.0.0.1, port 0),
+with shots paced twice as fast as real time so the break takes a few seconds to watch.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections.abc import Callable, Iterator
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+import uvicorn
+from playwright.sync_api import Browser, BrowserContext, Page, sync_playwright
+
+from server.__main__ import uvicorn_config
+from server.app import create_app
+from server.config import Settings
+from server.engine import Shot, Table, rack, simulate
+
+ARTIFACTS = Path(__file__).resolve().parents[2] / "artifacts"
+CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking"]
+E2E_SETTINGS = Settings(pace=2.0)
+
+
+@pytest.fixture(scope="session")
+def base_url() -> Iterator[str]:
+    """A live server; the engine is compiled first so the first shot does not wait for it."""
+    table = Table.pool("9ft")
+    simulate(table, rack("eight_ball", table), Shot(0.0, 1.0))
+    settings = replace(E2E_SETTINGS)
+    config = uvicorn_config(create_app(settings), "127.0.0.1", 0, settings,
+                            log_level="warning")
+    server = uvicorn.Server(config)
+    thread = threading.Thread(target=server.run, daemon=True)
+    thread.start()
+    deadline = time.monotonic() + 30
+    while not server.started:
+        if time.monotonic() > deadline or not thread.is_alive():
+            raise RuntimeError("the test server did not start")
+        time.sleep(0.02)
+    port = server.servers[0].sockets[0].getsockname()[1]
+    yield f"http://127.0.0.1:{port}"
+    server.should_exit = True
+    thread.join(timeout=10)
+
+
+@pytest.fixture(scope="session")
+def browser() -> Iterator[Browser]:
+    with sync_playwright() as p:
+        b = p.chromium.launch(executable_path="/usr/bin/chromium", args=CHROMIUM_ARGS)
+        yield b
+        b.close()
+
+
+@pytest.fixture
+def new_page(browser: Browser) -> Iterator[Callable[..., Page]]:
+    """Open a page in a fresh browser context (its own localStorage: another person)."""
+    contexts: list[BrowserContext] = []
+    errors: list[str] = []
+
+    def open_page(**options: object) -> Page:
+        ctx = browser.new_context(viewport={"width": 1200, "height": 720}, **options)
+        contexts.append(ctx)
+        page = ctx.new_page()
+        page.on("pageerror", lambda e: errors.append(str(e)))
+        return page
+
+    yield open_page
+    for ctx in contexts:
+        ctx.close()
+    assert errors == [], f"JavaScript errors in the page: {errors}"
+
+
+@pytest.fixture(scope="session")
+def artifacts() -> Path:
+    ARTIFACTS.mkdir(exist_ok=True)
+    return ARTIFACTS

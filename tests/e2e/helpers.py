@@ -1,0 +1,53 @@
+"""What the browser tests do with a page: real mouse input, reads of the canvas pixels."""
+
+from __future__ import annotations
+
+import hashlib
+
+from playwright.sync_api import Page
+
+READY = "window.__pool && window.__pool.ready"
+
+
+def wait_ready(page: Page, phase: str | None = None, timeout: float = 30_000) -> None:
+    cond = READY + (f" && window.__pool.state.phase === '{phase}'" if phase else "")
+    page.wait_for_function(cond, timeout=timeout)
+
+
+def table_point(page: Page, x: float, y: float) -> tuple[float, float]:
+    """Page coordinates (CSS px) of table point (x, y) metres."""
+    box = page.get_by_test_id("table").bounding_box()
+    sx, sy = page.evaluate("([x, y]) => window.__pool.toScreen(x, y)", [x, y])
+    return box["x"] + sx, box["y"] + sy
+
+
+def canvas_digest(page: Page, region: tuple[float, float, float, float] | None = None) -> str:
+    """A hash of the canvas pixels (all, or a CSS-pixel box x, y, w, h of the canvas)."""
+    data = page.evaluate(
+        """(region) => {
+          const c = document.querySelector('[data-testid=table]');
+          const k = c.width / c.clientWidth;
+          const [x, y, w, h] = region
+            ? region.map((v) => Math.round(v * k)) : [0, 0, c.width, c.height];
+          const px = c.getContext('2d').getImageData(x, y, Math.max(1, w), Math.max(1, h)).data;
+          let a = 0, b = 0;
+          for (let i = 0; i < px.length; i++) { a = (a + px[i]) % 65521; b = (b + a) % 65521; }
+          return `${px.length}:${a}:${b}`;
+        }""",
+        list(region) if region else None,
+    )
+    return hashlib.sha1(data.encode()).hexdigest()
+
+
+def aim_and_shoot(page: Page, target: tuple[float, float], pull_px: float = 160) -> None:
+    """Aim at table point `target` with the mouse, press, pull back `pull_px`, release."""
+    tx, ty = table_point(page, *target)
+    cue = page.evaluate("window.__pool.balls.find((b) => b.id === 0)")
+    cx, cy = table_point(page, cue["x"], cue["y"])
+    dx, dy = tx - cx, ty - cy
+    n = (dx * dx + dy * dy) ** 0.5
+    page.mouse.move(tx - 30 * dx / n, ty - 30 * dy / n)
+    page.mouse.move(tx, ty, steps=5)
+    page.mouse.down()
+    page.mouse.move(tx - pull_px * dx / n, ty - pull_px * dy / n, steps=10)
+    page.mouse.up()
