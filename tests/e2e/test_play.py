@@ -53,8 +53,9 @@ def test_break_seen_by_both_players_and_a_spectator_then_reload_rejoins(
 
     # Where the rack is drawn on each page, and its pixels before the break.
     foot = ana.evaluate("window.__pool.state.table.foot_spot")
-    apex = ana.evaluate("window.__pool.balls.find((b) => b.id !== 0 && Math.abs(b.x - %f) < 0.01)"
-                        % foot[0])
+    apex = ana.evaluate(
+        "(fx) => window.__pool.balls.find((b) => b.id !== 0 && Math.abs(b.x - fx) < 0.01)",
+        foot[0])
     assert apex is not None, "a ball sits on the foot spot"
 
     def rack_region(page):
