@@ -13,26 +13,39 @@ export const RAIL_WIDTH = 0.1;
 
 /**
  * The transform that fits the whole table (bed, cushions, rails) into a canvas of
- * `width` x `height` CSS pixels with `margin` CSS pixels around it.
+ * `width` x `height` CSS pixels with `margin` CSS pixels around it. On a portrait canvas
+ * the table stands on end (head at the top) so it stays as large as possible.
  */
 export function makeView(table, width, height, margin = 8) {
   const border = CUSHION_WIDTH + RAIL_WIDTH;
   const totalL = table.length + 2 * border;
   const totalW = table.width + 2 * border;
-  const scale = Math.max(1e-6, Math.min((width - 2 * margin) / totalL,
-    (height - 2 * margin) / totalW));
-  const ox = (width - table.length * scale) / 2;
-  const oy = (height - table.width * scale) / 2;
+  const fit = (w, h) => Math.max(1e-6, Math.min((w - 2 * margin) / totalL,
+    (h - 2 * margin) / totalW));
+  const rotated = fit(height, width) > fit(width, height) * 1.15;
+  const scale = rotated ? fit(height, width) : fit(width, height);
+  const L = table.length;
+  const W = table.width;
+  if (!rotated) {
+    const ox = (width - L * scale) / 2;
+    const oy = (height - W * scale) / 2;
+    return {
+      scale, ox, oy, width, height, rotated,
+      /** Table metres -> CSS pixels. */
+      toScreen: (x, y) => [ox + x * scale, oy + (W - y) * scale],
+      /** CSS pixels -> table metres. */
+      toTable: (sx, sy) => [(sx - ox) / scale, W - (sy - oy) / scale],
+      /** A table direction (radians) as a screen angle (y down). */
+      screenAngle: (a) => -a,
+    };
+  }
+  const ox = (width - W * scale) / 2;
+  const oy = (height - L * scale) / 2;
   return {
-    scale, ox, oy, width, height,
-    /** Table metres -> CSS pixels. */
-    toScreen(x, y) {
-      return [ox + x * scale, oy + (table.width - y) * scale];
-    },
-    /** CSS pixels -> table metres. */
-    toTable(sx, sy) {
-      return [(sx - ox) / scale, table.width - (sy - oy) / scale];
-    },
+    scale, ox, oy, width, height, rotated,
+    toScreen: (x, y) => [ox + y * scale, oy + x * scale],
+    toTable: (sx, sy) => [(sy - oy) / scale, (sx - ox) / scale],
+    screenAngle: (a) => Math.PI / 2 - a,
   };
 }
 

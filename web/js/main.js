@@ -94,6 +94,7 @@ function startRoom(roomId) {
   const sinking = []; // balls dropping into a pocket
   let pendingRest = null; // balls at rest waiting for the playback to end
   let pendingCue = null; // where we asked to place the cue ball
+  let shotSentAt = -Infinity; // a shot was sent: no more aiming until the server answers
   let lastAimSent = -Infinity;
   let framesSeen = 0;
   let shotsSeen = 0;
@@ -125,7 +126,9 @@ function startRoom(roomId) {
     if (msg.type === 'welcome' && state.me.role === 'spectator' && seatToken()) {
       // The stored token was not accepted as a seat: forget it.
     }
-    if (msg.type === 'error' && (msg.ref === 'place_cue')) pendingCue = null;
+    if (msg.type === 'error' && msg.ref === 'place_cue') pendingCue = null;
+    if (msg.type === 'error' && msg.ref === 'shoot') shotSentAt = -Infinity;
+    if (msg.type === 'error' && msg.ref === 'aim') state = { ...state, error: null };
     if (state.table && state.table !== prevTable) {
       player.radius = state.table.ball_radius;
       layoutKey = '';
@@ -135,10 +138,12 @@ function startRoom(roomId) {
         case 'sync': send({ type: 'sync' }); break;
         case 'rest':
           pendingCue = null;
+          shotSentAt = -Infinity;
           if (player.done) { player.reset(e.balls); pendingRest = null; } else pendingRest = e.balls;
           break;
         case 'shot':
           shotsSeen += 1;
+          shotSentAt = -Infinity;
           pendingRest = null;
           aim.reset();
           player.startShot(e.balls, e.balls ? e.tick / state.tickHz : 0);
@@ -287,7 +292,8 @@ function startRoom(roomId) {
       table: state.table,
       balls: ballList,
       cue,
-      myTurn: isMyTurn(state) && state.phase === 'aiming' && !m?.decision,
+      myTurn: isMyTurn(state) && state.phase === 'aiming' && !m?.decision
+        && performance.now() / 1000 - shotSentAt > 3,
       ballInHand: m?.ball_in_hand ?? null,
       requiresCall: !!m?.requires_call,
     };
@@ -302,7 +308,7 @@ function startRoom(roomId) {
       for (const [id, b] of before) {
         if (!balls.has(id) && !sinking.some((s) => s.id === id)) {
           const pocket = nearestPocket(state.table, b.x, b.y);
-          sinking.push({ id, from: [b.x, b.y], to: pocket, cel: b.cel, heading: -(b.heading ?? 0),
+          sinking.push({ id, from: [b.x, b.y], to: pocket, cel: b.cel, heading: b.heading ?? 0,
             start: now, duration: 0.18 });
         }
       }
@@ -330,6 +336,7 @@ function startRoom(roomId) {
       }
       for (const msg of aim.handle(a, sit)) {
         if (msg.type === 'place_cue') pendingCue = { x: msg.x, y: msg.y };
+        if (msg.type === 'shoot') { shotSentAt = now; aim.dirty = false; }
         send(msg);
       }
     }

@@ -60,9 +60,13 @@ export function drawTable(ctx, table, view) {
   const s = view.scale;
   const L = table.length;
   const W = table.width;
-  const [bx, by] = view.toScreen(0, W); // top-left of the bed
-  const bw = L * s;
-  const bh = W * s;
+  // The bed's box on screen (either orientation).
+  const [c0x, c0y] = view.toScreen(0, 0);
+  const [c1x, c1y] = view.toScreen(L, W);
+  const bx = Math.min(c0x, c1x);
+  const by = Math.min(c0y, c1y);
+  const bw = Math.abs(c1x - c0x);
+  const bh = Math.abs(c1y - c0y);
   const cw = CUSHION_WIDTH * s;
   const rw = RAIL_WIDTH * s;
 
@@ -74,7 +78,7 @@ export function drawTable(ctx, table, view) {
   const oy = by - cw - rw;
   const ow = bw + 2 * (cw + rw);
   const oh = bh + 2 * (cw + rw);
-  const wood = ctx.createLinearGradient(0, oy, 0, oy + oh);
+  const wood = ctx.createLinearGradient(ox, oy, ox + ow * 0.2, oy + oh);
   wood.addColorStop(0, '#6b3a1f');
   wood.addColorStop(0.5, '#542c16');
   wood.addColorStop(1, '#3f200f');
@@ -119,8 +123,8 @@ export function drawTable(ctx, table, view) {
   });
 
   // Cloth on the bed, with a soft vignette from the lamp.
-  const cloth = ctx.createRadialGradient(bx + bw / 2, by + bh / 2, bh * 0.1,
-    bx + bw / 2, by + bh / 2, bw * 0.7);
+  const cloth = ctx.createRadialGradient(bx + bw / 2, by + bh / 2, Math.min(bw, bh) * 0.1,
+    bx + bw / 2, by + bh / 2, Math.max(bw, bh) * 0.7);
   cloth.addColorStop(0, '#1f8a50');
   cloth.addColorStop(1, '#146339');
   ctx.fillStyle = cloth;
@@ -198,7 +202,7 @@ export function drawBalls(ctx, view, sprites, balls, scaleToCss) {
   for (const id of ids) {
     const b = balls.get(id);
     const [x, y] = view.toScreen(b.x, b.y);
-    drawBall(ctx, sprites, id, x, y, b.cel ?? 0, -(b.heading ?? 0), scaleToCss);
+    drawBall(ctx, sprites, id, x, y, b.cel ?? 0, view.screenAngle(b.heading ?? 0), scaleToCss);
   }
 }
 
@@ -210,7 +214,8 @@ export function drawSinking(ctx, view, sprites, sink, now, scaleToCss) {
   const [sx, sy] = view.toScreen(x, y);
   ctx.save();
   ctx.globalAlpha = 1 - f * 0.8;
-  drawBall(ctx, sprites, sink.id, sx, sy, sink.cel, sink.heading, scaleToCss * (1 - 0.45 * f));
+  drawBall(ctx, sprites, sink.id, sx, sy, sink.cel, view.screenAngle(sink.heading),
+    scaleToCss * (1 - 0.45 * f));
   ctx.restore();
 }
 
@@ -237,21 +242,24 @@ export function drawGuide(ctx, view, table, cue, guide) {
   }
   const ray = (dir, len, color) => {
     if (!dir) return;
+    const [ex, ey] = view.toScreen(guide.contact[0] + dir[0] * len,
+      guide.contact[1] + dir[1] * len);
     ctx.strokeStyle = color;
     ctx.beginPath();
     ctx.moveTo(gx, gy);
-    ctx.lineTo(gx + dir[0] * len * s, gy - dir[1] * len * s);
+    ctx.lineTo(ex, ey);
     ctx.stroke();
   };
   if (guide.kind === 'ball') {
     const [hx, hy] = [guide.contact[0] + guide.objectDir[0] * 2 * table.ball_radius,
       guide.contact[1] + guide.objectDir[1] * 2 * table.ball_radius];
     const [ox, oy] = view.toScreen(hx, hy);
+    const [ex, ey] = view.toScreen(hx + guide.objectDir[0] * 0.3, hy + guide.objectDir[1] * 0.3);
     ctx.lineWidth = Math.max(1.5, s * 0.004);
     ctx.strokeStyle = 'rgba(255,230,120,0.9)';
     ctx.beginPath();
     ctx.moveTo(ox, oy);
-    ctx.lineTo(ox + guide.objectDir[0] * 0.3 * s, oy - guide.objectDir[1] * 0.3 * s);
+    ctx.lineTo(ex, ey);
     ctx.stroke();
     ctx.lineWidth = Math.max(1, s * 0.002);
     ray(guide.cueDir, 0.15, 'rgba(255,255,255,0.45)');
@@ -318,8 +326,10 @@ export function drawCue(ctx, view, table, cue, angle, power, alpha = 1) {
 
 /** Ball in hand: the allowed area tinted, the cue ball's wished place outlined. */
 export function drawPlacement(ctx, view, area, pending) {
-  const [x0, y0] = view.toScreen(area.x0, area.y1);
-  const [x1, y1] = view.toScreen(area.x1, area.y0);
+  const [ax0, ay0] = view.toScreen(area.x0, area.y1);
+  const [ax1, ay1] = view.toScreen(area.x1, area.y0);
+  const [x0, y0, x1, y1] = [Math.min(ax0, ax1), Math.min(ay0, ay1), Math.max(ax0, ax1),
+    Math.max(ay0, ay1)];
   ctx.save();
   ctx.fillStyle = 'rgba(255,255,255,0.07)';
   ctx.strokeStyle = 'rgba(255,255,255,0.35)';

@@ -123,3 +123,17 @@ test('the tip stays inside the legal disc', () => {
   const [x, y] = clampTip(0.6, 0.8);
   close(Math.hypot(x, y), 0.5, 1e-12);
 });
+
+test('a portrait canvas stands the table on end, head at the top, and maps back exactly', () => {
+  const v = makeView(TABLE, 400, 900);
+  assert.equal(v.rotated, true);
+  const [hx, hy] = v.toScreen(0, W / 2);
+  const [fx, fy] = v.toScreen(L, W / 2);
+  assert.ok(hy < fy && Math.abs(hx - fx) < 1e-9, 'head above foot');
+  const [x, y] = v.toTable(...v.toScreen(2.1, 0.3));
+  close(x, 2.1, 1e-12);
+  close(y, 0.3, 1e-12);
+  // A shot along +x (towards the foot) points down the screen.
+  close(v.screenAngle(0), Math.PI / 2);
+  assert.equal(makeView(TABLE, 900, 400).rotated, false);
+});
