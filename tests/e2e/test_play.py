@@ -110,6 +110,7 @@ def test_break_seen_by_both_players_and_a_spectator_then_reload_rejoins(
                    for b in p.evaluate("window.__pool.balls")) for p in pages.values()]
     assert rest[0] == rest[1] == rest[2]
     ana.get_by_test_id("table").screenshot(path=str(artifacts / "after-break.png"))
+    assert ana.evaluate("window.__pool.state.error") is None, "the server refused nothing"
 
     # Chat reaches everyone.
     watcher.get_by_test_id("chat-input").fill("great break")

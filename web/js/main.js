@@ -220,6 +220,7 @@ function startRoom(roomId) {
     if (confirm('Concede this frame?')) send({ type: 'concede' });
   });
   $('rerack').addEventListener('click', () => send({ type: 'rerack' }));
+  $('push-out').addEventListener('click', () => send({ type: 'push_out' }));
   $('chat-form').addEventListener('submit', (ev) => {
     ev.preventDefault();
     const text = $('chat-input').value.trim();

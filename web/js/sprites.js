@@ -80,7 +80,7 @@ function makeCanvas(w, h) {
 function numberDecals(size) {
   const decals = {};
   const c = makeCanvas(size, size);
-  const ctx = c.getContext('2d');
+  const ctx = c.getContext('2d', { willReadFrequently: true });
   for (let n = 1; n <= 15; n++) {
     ctx.clearRect(0, 0, size, size);
     ctx.fillStyle = '#000';

@@ -82,8 +82,8 @@ export function reduce(state, msg, now = 0) {
       s.clock = msg.clock ? { ...msg.clock, at: now } : null;
       s.grace = msg.grace ?? [];
       s.match = msg.match ?? null;
-      const lo = s.match?.last_outcome;
-      if (lo?.message) s.outcome = lo.message;
+      const said = [s.match?.last_outcome?.message, s.match?.notice].filter(Boolean);
+      if (said.length) s.outcome = said.join(' ');
       if (s.phase === 'rolling' && msg.shot) {
         if (s.shot !== msg.shot.id) {
           s.shot = msg.shot.id;

@@ -140,6 +140,7 @@ export function renderHud(state, now) {
   setHidden($('concede'), !(isPlayer && !practice && (state.phase === 'aiming'
     || state.phase === 'rolling')));
   setHidden($('rerack'), !(isPlayer && practice));
+  setHidden($('push-out'), !(isMyTurn(state) && m?.push_out_available && !m?.push_out_declared));
 
   const banner = $('banner');
   setHidden(banner, !winner);

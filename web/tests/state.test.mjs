@@ -163,3 +163,11 @@ test('garbage messages change nothing', () => {
     assert.deepEqual(r.state.balls, s0.balls);
   }
 });
+
+test('groups as the rules send them (a list by seat) and a notice beside the outcome', () => {
+  const { s } = run([[stateMsg(1, { match: match({ groups: ['stripes', 'solids'],
+    last_outcome: { message: 'Ben fouls.' }, notice: 'Ana declares a push out.' }) })]]);
+  assert.deepEqual(ballsLeft(s, 0), [9]);
+  assert.deepEqual(ballsLeft(s, 1), [1]);
+  assert.equal(s.outcome, 'Ben fouls. Ana declares a push out.');
+});
