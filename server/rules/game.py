@@ -8,6 +8,8 @@ not allowed raises `IllegalActionError` and changes nothing. The rule modules ju
 
 from __future__ import annotations
 
+import dataclasses
+
 from server.engine import CUE, BallSet, ShotResult, Table, rack
 
 from . import eight_ball, nine_ball
@@ -342,6 +344,54 @@ class Game:
         self._rack(0)
         self.notice = "Balls re-racked."
 
+    # --- storage ----------------------------------------------------------------------
+    def to_dict(self) -> dict:
+        """Everything needed to rebuild this game exactly (JSON-able; floats exact)."""
+        return {
+            "kind": self.kind, "players": list(self.players),
+            "table": _table_fields(self.table), "seed": self.seed,
+            "options": dataclasses.asdict(self.options),
+            "over": self.over, "winner": self.winner, "reason": self.reason,
+            "last_outcome": self.last_outcome.to_dict() if self.last_outcome else None,
+            "notice": self.notice, "racks": self.racks, "balls": self.balls.to_dict(),
+            "breaker": self.breaker, "turn": self.turn, "breaking": self.breaking,
+            "ball_in_hand": self.ball_in_hand,
+            "groups": ([[s, g] for s, g in sorted(self.groups.items())]
+                       if self.groups is not None else None),
+            "called_pocket": self.called_pocket,
+            "decision": self.decision.to_dict() if self.decision else None,
+            "pending": self._pending, "after_decision_bih": self._after_decision_bih,
+            "fouls_in_row": list(self.fouls_in_row),
+            "push_out_available": self.push_out_available,
+            "push_out_declared": self.push_out_declared,
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict) -> Game:
+        """The inverse of `to_dict`: the same game, ready to go on."""
+        game = cls.__new__(cls)
+        game.kind = data["kind"]
+        game.players = tuple(data["players"])
+        game.table = Table(*data["table"])
+        game.seed = data["seed"]
+        game.options = RuleOptions(**data["options"])
+        game.over, game.winner, game.reason = data["over"], data["winner"], data["reason"]
+        last = data["last_outcome"]
+        game.last_outcome = Outcome.from_dict(last) if last else None
+        game.notice, game.racks = data["notice"], data["racks"]
+        game.balls = BallSet.from_dict(data["balls"])
+        game.breaker, game.turn, game.breaking = data["breaker"], data["turn"], data["breaking"]
+        game.ball_in_hand = data["ball_in_hand"]
+        groups = data["groups"]
+        game.groups = {int(s): g for s, g in groups} if groups is not None else None
+        game.called_pocket = data["called_pocket"]
+        game.decision = Decision.from_dict(data["decision"]) if data["decision"] else None
+        game._pending, game._after_decision_bih = data["pending"], data["after_decision_bih"]
+        game.fouls_in_row = list(data["fouls_in_row"])
+        game.push_out_available = data["push_out_available"]
+        game.push_out_declared = data["push_out_declared"]
+        return game
+
     # --- what a client shows -----------------------------------------------------------
     def balls_left(self) -> list[list[int]] | None:
         """Per seat, the balls that seat still has to pocket before the 8 (8-ball, groups
@@ -380,3 +430,9 @@ class Game:
             "notice": self.notice,
             "last_outcome": self.last_outcome.to_dict() if self.last_outcome else None,
         }
+
+
+def _table_fields(table: Table) -> list[float]:
+    """The table's constructor arguments (its geometry is derived from them)."""
+    return [table.length, table.width, table.ball_radius, table.corner_mouth,
+            table.side_mouth]

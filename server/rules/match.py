@@ -7,7 +7,7 @@ import dataclasses
 from server.engine import ShotResult, Table
 
 from .errors import IllegalActionError
-from .game import PRACTICE, Game
+from .game import PRACTICE, Game, _table_fields
 from .options import DEFAULT_OPTIONS, RuleOptions
 from .outcome import Outcome
 
@@ -114,6 +114,34 @@ class Match:
             self.first_breaker = 1 - self.first_breaker
         self.seed += 1
         self._start()
+
+    def to_dict(self) -> dict:
+        """Everything needed to rebuild this match exactly, the current game included."""
+        table = self.table
+        return {
+            "kind": self.kind, "players": list(self.players), "race_to": self.race_to,
+            "seed": self.seed, "options": dataclasses.asdict(self.options),
+            "table": _table_fields(table) if table is not None else None,
+            "first_breaker": self.first_breaker, "score": list(self.score),
+            "over": self.over, "winner": self.winner, "reason": self.reason,
+            "games_played": self.games_played, "game": self.game.to_dict(),
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict) -> Match:
+        """The inverse of `to_dict`."""
+        match = cls.__new__(cls)
+        match.kind = data["kind"]
+        match.players = tuple(data["players"])
+        match.race_to, match.seed = data["race_to"], data["seed"]
+        match.options = RuleOptions(**data["options"])
+        match.table = Table(*data["table"]) if data["table"] is not None else None
+        match.first_breaker = data["first_breaker"]
+        match.score = list(data["score"])
+        match.over, match.winner, match.reason = data["over"], data["winner"], data["reason"]
+        match.games_played = data["games_played"]
+        match.game = Game.from_dict(data["game"])
+        return match
 
     def public_state(self) -> dict:
         """The game's public state plus the score, the race and the match result."""

@@ -35,6 +35,10 @@ class Decision:
     def to_dict(self) -> dict:
         return {"seat": self.seat, "options": list(self.options), "prompt": self.prompt}
 
+    @classmethod
+    def from_dict(cls, data: dict) -> Decision:
+        return cls(int(data["seat"]), tuple(data["options"]), str(data["prompt"]))
+
 
 @dataclass(frozen=True)
 class Outcome:
@@ -70,3 +74,16 @@ class Outcome:
         data["fouls"] = [{"code": f.code, "message": f.message} for f in self.fouls]
         data["decision"] = self.decision.to_dict() if self.decision else None
         return data
+
+    @classmethod
+    def from_dict(cls, data: dict) -> Outcome:
+        """The inverse of `to_dict` (for stored games)."""
+        decision = data.get("decision")
+        return cls(
+            shooter=data["shooter"], pocketed=tuple(data["pocketed"]),
+            fouls=tuple(Foul(f["code"], f["message"]) for f in data["fouls"]),
+            continues=data["continues"], next_turn=data["next_turn"],
+            ball_in_hand=data["ball_in_hand"], frame_over=data["frame_over"],
+            winner=data["winner"], reason=data["reason"], message=data["message"],
+            spotted=tuple(data.get("spotted", ())),
+            decision=Decision.from_dict(decision) if decision else None)
