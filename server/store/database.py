@@ -1,0 +1,103 @@
+"""One SQLite connection on one thread: every store call runs there, in the order made.
+
+Why a thread of its own: a write never holds up the event loop (the room only queues it),
+reads from the HTTP API `await` it, and because it is one queue, a read sees every write
+queued before it (the match list shows the shot that just ended). WAL journal with
+`synchronous=NORMAL`: a crash loses at most the last few writes, never the database.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import os
+import queue
+import sqlite3
+import threading
+from collections.abc import Callable
+from concurrent.futures import Future
+from pathlib import Path
+from typing import TypeVar
+
+from .repository import Repository
+from .schema import migrate
+
+log = logging.getLogger(__name__)
+T = TypeVar("T")
+DEFAULT_DB = "billiards.db"
+
+
+def default_db_path(env: dict[str, str] | None = None) -> Path:
+    """`BILLIARDS_DB` from the environment, else `./billiards.db`."""
+    env = dict(os.environ) if env is None else env
+    return Path(env.get("BILLIARDS_DB") or DEFAULT_DB)
+
+
+class Database:
+    def __init__(self, path: Path | str) -> None:
+        self.path = Path(path)
+        self.closed = False
+        self._jobs: queue.SimpleQueue = queue.SimpleQueue()
+        self._ready: Future[None] = Future()
+        self._thread = threading.Thread(target=self._run, name="billiards-store", daemon=True)
+        self._thread.start()
+        self._ready.result()  # raises if the file cannot be opened or migrated
+
+    def _run(self) -> None:
+        try:
+            if self.path.parent != Path(""):
+                self.path.parent.mkdir(parents=True, exist_ok=True)
+            conn = sqlite3.connect(self.path, isolation_level=None, check_same_thread=True)
+            conn.execute("PRAGMA journal_mode = WAL")
+            conn.execute("PRAGMA synchronous = NORMAL")
+            conn.execute("PRAGMA foreign_keys = ON")
+            migrate(conn)
+        except BaseException as exc:
+            self._ready.set_exception(exc)
+            return
+        self._ready.set_result(None)
+        repo = Repository(conn)
+        while True:
+            job = self._jobs.get()
+            if job is None:
+                break
+            fn, future = job
+            if not future.set_running_or_notify_cancel():
+                continue
+            try:
+                future.set_result(fn(repo))
+            except BaseException as exc:
+                future.set_exception(exc)
+        conn.close()
+
+    def submit(self, fn: Callable[[Repository], T]) -> Future[T]:
+        """Queue `fn(repo)`; returns at once."""
+        future: Future[T] = Future()
+        if self.closed:
+            future.set_exception(RuntimeError("the store is closed"))
+            return future
+        self._jobs.put((fn, future))
+        return future
+
+    def write(self, fn: Callable[[Repository], object], what: str) -> None:
+        """Fire and forget; a failure is logged (the game goes on without that record)."""
+        def done(future: Future) -> None:
+            if future.exception() is not None:
+                log.error("store: %s failed", what, exc_info=future.exception())
+        self.submit(fn).add_done_callback(done)
+
+    def run(self, fn: Callable[[Repository], T]) -> T:
+        """Wait for the result (startup, shutdown, tests; not on the event loop)."""
+        return self.submit(fn).result()
+
+    async def call(self, fn: Callable[[Repository], T]) -> T:
+        """Await the result from the event loop."""
+        return await asyncio.wrap_future(self.submit(fn))
+
+    def close(self) -> None:
+        """Finish every queued job, then close the connection."""
+        if self.closed:
+            return
+        self.closed = True
+        self._jobs.put(None)
+        self._thread.join()

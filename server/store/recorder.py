@@ -1,0 +1,134 @@
+"""`StoreObserver`: the room observer that records matches, games and shots and saves rooms.
+
+It runs on the event loop, so it only builds the rows (plain JSON, copied from the room at
+that instant) and queues them on the store's thread; nothing here waits for the disk.
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+
+from server.engine import BallSet, Shot
+from server.rooms.room import Room
+from server.rules import Outcome
+
+from .database import Database
+from .snapshot import pending_shot, room_to_json
+
+
+@dataclass
+class _Tracked:
+    match_id: int
+    finished: bool = False
+
+
+class StoreObserver:
+    """Implements `server.rooms.observer.RoomObserver` over a `Database`."""
+
+    def __init__(self, db: Database) -> None:
+        self.db = db
+        self._ids = itertools.count(db.run(lambda repo: repo.last_match_id()) + 1)
+        self._matches: dict[str, _Tracked] = {}
+        self.active = True  # False once the server shuts down: rooms are kept, not deleted
+
+    def adopt(self, room: Room, match_id: int | None) -> None:
+        """A room restored after a restart keeps its match record."""
+        if match_id is not None and room.match is not None:
+            self._matches[room.room_id] = _Tracked(match_id, room.match.over)
+
+    def stop(self) -> None:
+        """The server is going down: stop recording; the saved rooms stay for the restart."""
+        self.active = False
+
+    def match_id(self, room: Room) -> int | None:
+        """The record of the room's current match, started when the match starts (and again
+        on a rematch)."""
+        match = room.match
+        if match is None:
+            return None
+        tracked = self._matches.get(room.room_id)
+        if tracked is None or (tracked.finished and not match.over):
+            tracked = _Tracked(next(self._ids))
+            self._matches[room.room_id] = tracked
+            args = (tracked.match_id, room.room_id, match.kind, list(match.players),
+                    match.race_to)
+            self.db.write(lambda repo: repo.start_match(*args), "start match")
+        return tracked.match_id
+
+    # ---- RoomObserver -----------------------------------------------------------------
+
+    def shot_started(self, room: Room, seat: int, shot: Shot, shot_id: int) -> None:
+        """Save the room as it was before the shot, with the shot: a restart replays it."""
+        if not self.active:
+            return
+        match_id = self.match_id(room)
+        text = room_to_json(room, match_id, pending_shot(shot_id, seat, shot))
+        self.db.write(lambda repo: repo.save_room(room.room_id, text), "save room")
+
+    def shot_played(self, room: Room, seat: int, shot: Shot, before: BallSet,
+                    outcome: Outcome) -> None:
+        if not self.active or room.match is None:
+            return
+        match = room.match
+        match_id = self.match_id(room)
+        assert match_id is not None and room.shot is not None
+        scored = outcome.frame_over and outcome.winner is not None
+        game_no = match.games_played + (0 if scored else 1)
+        row = (match_id, room.shot.id, game_no, seat,
+               {"angle": shot.angle, "speed": shot.speed, "tip": list(shot.tip)},
+               _table_fields(match.game.table), before.to_dict(), outcome.to_dict())
+        self.db.write(lambda repo: repo.record_shot(*row), "record shot")
+        self._scored(room, "shot", outcome)
+
+    def outcome(self, room: Room, cause: str, outcome: Outcome) -> None:
+        if self.active:
+            self._scored(room, cause, outcome)
+
+    def room_changed(self, room: Room) -> None:
+        if not self.active:
+            return
+        match_id = self.match_id(room)
+        self._finish_if_over(room)
+        text = room_to_json(room, match_id)
+        self.db.write(lambda repo: repo.save_room(room.room_id, text), "save room")
+
+    def room_closed(self, room: Room) -> None:
+        """The room expired: forget it; a match left unfinished is marked abandoned."""
+        if not self.active:
+            return
+        tracked = self._matches.pop(room.room_id, None)
+        room_id = room.room_id
+        self.db.write(lambda repo: repo.delete_room(room_id), "delete room")
+        if tracked is not None and not tracked.finished and room.match is not None:
+            score = list(room.match.score)
+            self.db.write(lambda repo: repo.finish_match(
+                tracked.match_id, score, None, "The room closed before the end.",
+                status="abandoned"), "abandon match")
+
+    # ---- helpers ----------------------------------------------------------------------
+
+    def _scored(self, room: Room, cause: str, outcome: Outcome) -> None:
+        match = room.match
+        match_id = self.match_id(room)
+        if match is None or match_id is None:
+            return
+        if outcome.frame_over and outcome.winner is not None:
+            args = (match_id, match.games_played, outcome.winner, outcome.reason, cause,
+                    list(match.score))
+            self.db.write(lambda repo: repo.record_game(*args), "record game")
+        self._finish_if_over(room)
+
+    def _finish_if_over(self, room: Room) -> None:
+        match = room.match
+        tracked = self._matches.get(room.room_id)
+        if match is None or tracked is None or tracked.finished or not match.over:
+            return
+        tracked.finished = True
+        args = (tracked.match_id, list(match.score), match.winner, match.reason)
+        self.db.write(lambda repo: repo.finish_match(*args), "finish match")
+
+
+def _table_fields(table) -> list[float]:
+    return [table.length, table.width, table.ball_radius, table.corner_mouth,
+            table.side_mouth]
