@@ -12,6 +12,7 @@ import numpy as np
 from numba import njit
 
 from .constants import (
+    EPS_SPIN,
     EV_BALL,
     EV_CUSHION,
     EV_JAW,
@@ -24,6 +25,8 @@ from .constants import (
     POCKETED,
     ROLLING,
     SLIDING,
+    SPINNING,
+    STATIONARY,
 )
 from .detect import earliest_event
 from .motion import advance, finish_transition, transition_time
@@ -85,6 +88,11 @@ def run_tick(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, le
                 n_ev = _record(events, n_ev, now, EV_POCKET, a, -1, speed, b)
             count += 1
             if count >= MAX_EVENTS_PER_TICK:
+                # A Zeno loop: e.g. a spinning ball pressed against a still one collides
+                # again at once, forever. Stop the balls of this event so the shot ends.
+                n_ev = _halt(vel, w, st, a, now, events, n_ev, radius)
+                if kind == EV_BALL:
+                    n_ev = _halt(vel, w, st, b, now, events, n_ev, radius)
                 return n_ev, True
             continue
         # No collision before the horizon: move there and finish any state change.
@@ -103,6 +111,19 @@ def run_tick(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, le
             if tt <= 1e-9 and finish_transition(vel, w, st, i, radius):
                 n_ev = _record(events, n_ev, now, EV_REST, i, -1, 0.0, -1)
     return n_ev, False
+
+
+@njit(cache=True)
+def _halt(vel, w, st, i, now, events, n_ev, radius):
+    """Bring ball i to rest (keeping its spin about the vertical) and record it."""
+    if st[i] != SLIDING and st[i] != ROLLING:
+        return n_ev
+    vel[i, 0] = 0.0
+    vel[i, 1] = 0.0
+    w[i, 0] = 0.0
+    w[i, 1] = 0.0
+    st[i] = SPINNING if abs(w[i, 2]) > EPS_SPIN else STATIONARY
+    return _record(events, n_ev, now, EV_REST, i, -1, 0.0, -1)
 
 
 @njit(cache=True, inline="always")
