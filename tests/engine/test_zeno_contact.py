@@ -28,3 +28,9 @@ def test_a_zeno_contact_ends_the_shot_quickly_without_overlap() -> None:
     d = np.linalg.norm(pos[:, None] - pos[None, :], axis=2)
     d[np.diag_indices(len(pos))] = np.inf
     assert d.min() >= 2 * table.ball_radius - 1e-9
+
+
+def test_the_stalled_tick_reports_each_contact_once() -> None:
+    result = simulate(Table.pool("9ft"), BallSet.from_dict(DATA["balls"]),
+                      Shot(DATA["shot"]["angle"], DATA["shot"]["speed"]))
+    assert len(result.events) < 500  # not the 5000 repeats of the stalled tick

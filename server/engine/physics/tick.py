@@ -57,6 +57,7 @@ def run_tick(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, le
     radius = p[P_RADIUS]
     elapsed = 0.0
     count = 0
+    first_ev = n_ev
     while elapsed < dt:
         remaining = dt - elapsed
         horizon = remaining
@@ -90,6 +91,7 @@ def run_tick(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, le
             if count >= MAX_EVENTS_PER_TICK:
                 # A Zeno loop: e.g. a spinning ball pressed against a still one collides
                 # again at once, forever. Stop the balls of this event so the shot ends.
+                n_ev = _distinct(events, first_ev, n_ev)
                 n_ev = _halt(vel, w, st, a, now, events, n_ev, radius)
                 if kind == EV_BALL:
                     n_ev = _halt(vel, w, st, b, now, events, n_ev, radius)
@@ -111,6 +113,24 @@ def run_tick(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, le
             if tt <= 1e-9 and finish_transition(vel, w, st, i, radius):
                 n_ev = _record(events, n_ev, now, EV_REST, i, -1, 0.0, -1)
     return n_ev, False
+
+
+@njit(cache=True)
+def _distinct(events, start, n_ev):
+    """Keep the first of each (kind, balls, target) among events[start:n_ev]: a stalled
+    tick's thousands of repeats are one sound."""
+    kept = start
+    for e in range(start, n_ev):
+        seen = False
+        for k in range(start, kept):
+            if (events[k, 1] == events[e, 1] and events[k, 2] == events[e, 2]
+                    and events[k, 3] == events[e, 3] and events[k, 5] == events[e, 5]):
+                seen = True
+                break
+        if not seen:
+            events[kept] = events[e]
+            kept += 1
+    return kept
 
 
 @njit(cache=True)
