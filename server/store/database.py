@@ -36,12 +36,19 @@ def default_db_path(env: dict[str, str] | None = None) -> Path:
 class Database:
     def __init__(self, path: Path | str) -> None:
         self.path = Path(path)
-        self.closed = False
+        self.closed = True
+        self.open()
+
+    def open(self) -> None:
+        """Start the thread and open (and migrate) the file; nothing if already open."""
+        if not self.closed:
+            return
         self._jobs: queue.SimpleQueue = queue.SimpleQueue()
         self._ready: Future[None] = Future()
         self._thread = threading.Thread(target=self._run, name="billiards-store", daemon=True)
         self._thread.start()
         self._ready.result()  # raises if the file cannot be opened or migrated
+        self.closed = False
 
     def _run(self) -> None:
         try:

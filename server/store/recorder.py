@@ -37,6 +37,10 @@ class StoreObserver:
         if match_id is not None and room.match is not None:
             self._matches[room.room_id] = _Tracked(match_id, room.match.over)
 
+    def start(self) -> None:
+        """Record again (a new lifespan of the same app)."""
+        self.active = True
+
     def stop(self) -> None:
         """The server is going down: stop recording; the saved rooms stay for the restart."""
         self.active = False

@@ -22,6 +22,8 @@ def restore_rooms(db: Database, registry: RoomRegistry, settings: Settings,
     shot that was in flight is played again from its start. Needs the running loop."""
     restored = []
     for snap in db.run(lambda repo: repo.rooms()):
+        if registry.get(snap.room_id) is not None:
+            continue  # still live in this process
         try:
             room, match_id, pending = room_from_dict(snap.data)
         except (KeyError, TypeError, ValueError):
