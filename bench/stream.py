@@ -1,0 +1,106 @@
+"""Bytes per client on the wire while a break is streamed, per frame rate and compression.
+
+    .venv/bin/python -m bench.stream [--runs 3]
+
+Starts a real uvicorn on loopback, plays a break in a fresh room for each configuration and
+counts the bytes a spectator's socket receives (WebSocket framing included) from the strike
+to the shot's last `state`, divided by the shot's duration (ticks / 120). Prints the median
+of several runs. Playback is sped up (bytes per shot-second do not depend on it).
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import json
+import socket
+import statistics
+import threading
+import time
+from dataclasses import replace
+
+import httpx
+import uvicorn
+import websockets
+from websockets.asyncio.client import ClientConnection
+
+from server.__main__ import uvicorn_config
+from server.app import create_app
+from server.config import Settings
+
+
+class CountingConnection(ClientConnection):
+    received = 0
+
+    def data_received(self, data: bytes) -> None:
+        self.received += len(data)
+        super().data_received(data)
+
+
+async def one_break(address: str, compression: str | None) -> tuple[float, int, int]:
+    """(bytes per shot-second, frames, ticks) seen by a spectator during one break.
+
+    The shooter does not read: `max_queue=None` lets its client buffer everything so its
+    close handshake is not stuck behind unread messages.
+    """
+    async with httpx.AsyncClient(base_url=f"http://{address}") as http:
+        room = (await http.post("/api/rooms", json={"game": "eight_ball"})).json()["room_id"]
+        token = (await http.post(f"/api/rooms/{room}/join", json={"name": "A"})).json()["token"]
+        await http.post(f"/api/rooms/{room}/join", json={"name": "B"})
+    url = f"ws://{address}/ws/rooms/{room}"
+    async with websockets.connect(f"{url}?token={token}", compression=compression,
+                                  max_queue=None) as a, \
+            websockets.connect(url, compression=compression,
+                               create_connection=CountingConnection) as s:
+        for _ in range(3):
+            await s.recv()
+        await a.send(json.dumps({"type": "shoot", "angle": 0.0, "speed": 9.0}))
+        start = None
+        frames = ticks = 0
+        while True:
+            message = json.loads(await s.recv())
+            if start is None:
+                start = s.received - len(json.dumps(message))  # roughly: count from here
+            if message["type"] == "frame":
+                frames += 1
+                ticks = message["tick"]
+            if message["type"] == "state" and ticks:
+                break
+        return (s.received - start) / (ticks / 120), frames, ticks
+
+
+def serve(settings: Settings) -> tuple[uvicorn.Server, threading.Thread, str]:
+    sock = socket.socket()
+    sock.bind(("127.0.0.1", 0))
+    host, port = sock.getsockname()
+    server = uvicorn.Server(uvicorn_config(create_app(settings), host, port, settings,
+                                           log_level="warning"))
+    thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
+    thread.start()
+    while not server.started:
+        time.sleep(0.02)
+    return server, thread, f"{host}:{port}"
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--runs", type=int, default=3)
+    args = parser.parse_args()
+    print(f"{'frames/s':>8} {'compression':>12} {'bytes/s per client':>19} {'frames':>7}")
+    for every in (2, 4, 6):
+        settings = replace(Settings(), frame_every=every, pace=8.0)
+        server, thread, address = serve(settings)
+        try:
+            for compression in (None, "deflate"):
+                runs = [asyncio.run(one_break(address, compression)) for _ in range(args.runs)]
+                rate = statistics.median(r[0] for r in runs)
+                frames = statistics.median(r[1] for r in runs)
+                print(f"{120 // every:>8} {compression or 'none':>12} {rate:>19.0f} "
+                      f"{frames:>7.0f}")
+        finally:
+            server.should_exit = True
+            thread.join(10)
+
+
+if __name__ == "__main__":
+    main()
