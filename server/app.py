@@ -12,23 +12,36 @@ from fastapi.responses import FileResponse
 from fastapi.staticfiles import StaticFiles
 
 from server.api.http import router as http_router
+from server.api.matches import router as matches_router
 from server.api.ws import router as ws_router
 from server.config import Settings
 from server.rooms import RoomRegistry
 from server.rooms.observer import RoomObserver
+from server.store import Database, StoreObserver, default_db_path
+from server.store.restore import restore_rooms
 
 CLOSE_RESTART = 1012
 
 
 def create_app(settings: Settings | None = None,
-               observer: RoomObserver | None = None) -> FastAPI:
-    """Build the app. `settings` defaults to `Settings.from_env()`; `observer` is the store
-    hook (issue 7) told about every shot and room change."""
+               observer: RoomObserver | None = None,
+               store: Database | None = None) -> FastAPI:
+    """Build the app. `settings` defaults to `Settings.from_env()`. `store` is the SQLite
+    history and room store (default: the file in `BILLIARDS_DB`, else `./billiards.db`);
+    its `StoreObserver` is told about every shot and room change unless `observer` is given.
+    The lifespan restores the saved rooms on start and keeps them on shutdown."""
     settings = settings or Settings.from_env()
+    store = store or Database(default_db_path())
+    if observer is None:
+        observer = StoreObserver(store)
     registry = RoomRegistry(settings, observer)
 
     @contextlib.asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
+        store.open()
+        if isinstance(observer, StoreObserver):
+            observer.start()
+            restore_rooms(store, registry, settings, observer)
         sweeper = asyncio.create_task(registry.run_sweeper())
         try:
             yield
@@ -36,8 +49,11 @@ def create_app(settings: Settings | None = None,
             sweeper.cancel()
             with contextlib.suppress(asyncio.CancelledError):
                 await sweeper
+            if isinstance(observer, StoreObserver):
+                observer.stop()  # the saved rooms stay saved for the next start
             registry.close_all(CLOSE_RESTART, "server_restart")
             await asyncio.sleep(0)  # let the senders see the close
+            await asyncio.to_thread(store.close)  # every queued write is on disk
 
     app = FastAPI(title="Pool online", version="1.0",
                   description="Rooms, seats and the authoritative game stream. "
@@ -45,7 +61,9 @@ def create_app(settings: Settings | None = None,
                   lifespan=lifespan)
     app.state.settings = settings
     app.state.registry = registry
+    app.state.store = store
     app.include_router(http_router)
+    app.include_router(matches_router)
     app.include_router(ws_router)
     _serve_web(app, settings.web_dir)
     return app

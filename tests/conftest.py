@@ -2,7 +2,31 @@
 
 from __future__ import annotations
 
+import os
+import tempfile
 import warnings
+
+import pytest
+
+# Apps built without an explicit store open `BILLIARDS_DB` (default ./billiards.db): never
+# the working tree. Session-wide servers share this one; each test gets its own below.
+os.environ["BILLIARDS_DB"] = os.path.join(tempfile.mkdtemp(prefix="billiards-"), "test.db")
 
 # Starlette 1.10 asks for `httpx2` under its TestClient; plain httpx works the same here.
 warnings.filterwarnings("ignore", message=".*httpx2.*")
+
+
+@pytest.fixture(autouse=True)
+def _own_database(tmp_path_factory, monkeypatch) -> None:
+    """A fresh database per test, so rooms saved by one test are not restored in another."""
+    monkeypatch.setenv("BILLIARDS_DB", str(tmp_path_factory.mktemp("db") / "billiards.db"))
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _warm_engine() -> None:
+    """Load (or, on a fresh clone, compile) the engine once before any test runs, so that
+    no test that watches timing pays the one-off compile in the middle of a stream."""
+    from server.engine import Shot, Table, rack, simulate
+
+    table = Table.pool("9ft")
+    simulate(table, rack("eight_ball", table), Shot(0.0, 9.0))

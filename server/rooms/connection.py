@@ -80,7 +80,8 @@ class Connection:
                 return
             text, _ = self._queue.popleft()
             try:
-                await asyncio.wait_for(self.send_text(text), self.send_timeout)
+                async with asyncio.timeout(self.send_timeout):  # no task per send
+                    await self.send_text(text)
             except TimeoutError:
                 self.close(CLOSE_TOO_SLOW, "too_slow")
                 return

@@ -9,6 +9,7 @@ from __future__ import annotations
 import asyncio
 import json
 import logging
+import math
 import time
 from dataclasses import dataclass
 
@@ -20,20 +21,42 @@ from server.api.messages import (
     Shoot,
 )
 from server.config import Settings
-from server.engine import BallSet, Shot, simulate
+from server.engine import BallSet, Shot, ShotResult, Table, simulate
 from server.rules import Outcome
 
 from .connection import CLOSE_REPLACED, Connection
 from .errors import ActionError
 from .observer import NullObserver, RoomObserver
 from .room import Room
-from .stream import plan_shot
+from .stream import Timed, plan_shot
 
 log = logging.getLogger(__name__)
 
 
 def encode(payload: dict) -> str:
     return json.dumps(payload, separators=(",", ":"), allow_nan=False)
+
+
+def prepare_shot(table: Table, before: BallSet, shot: Shot, shot_id: int,
+                 frame_every: int) -> tuple[ShotResult, list[Timed], list[str]]:
+    """Simulate and plan a shot and encode its messages (runs in a worker thread)."""
+    result = simulate(table, before, shot)
+    plan = plan_shot(result, shot_id, frame_every)
+    bodies = [encode({k: v for k, v in t.payload.items() if k != "type"}) for t in plan]
+    return result, plan, bodies
+
+
+def superseded_times(plan: list[Timed]) -> list[float]:
+    """For each message, when the next frame after it is due (inf if none): a frame whose
+    successor is already due when it comes up is stale, so a late loop skips it instead of
+    sending a burst that every member would receive late anyway."""
+    times = [math.inf] * len(plan)
+    next_frame = math.inf
+    for i in range(len(plan) - 1, -1, -1):
+        times[i] = next_frame
+        if plan[i].balls is not None:
+            next_frame = plan[i].at
+    return times
 
 
 @dataclass
@@ -56,6 +79,7 @@ class LiveRoom:
         self.last_activity = time.monotonic()
         self.ever_joined = False
         self.sim_seconds: list[float] = []  # wall time of each simulate(), for measuring
+        self.frames_skipped = 0  # frames not sent because the loop was late (overload)
         self._clock: _Timer | None = None
         self._grace: dict[int, _Timer] = {}
         self._stream: asyncio.Task | None = None
@@ -68,6 +92,15 @@ class LiveRoom:
         self.seq += 1
         text = encode({"type": payload["type"], "seq": self.seq,
                        **{k: v for k, v in payload.items() if k != "type"}})
+        for conn in list(self.members.values()):
+            conn.push(text, droppable)
+
+    def broadcast_body(self, kind: str, body: str, droppable: bool = False) -> None:
+        """`broadcast` of a message whose JSON without `type` and `seq` is ready (`body`):
+        the stream encodes a shot's messages once, off the event loop."""
+        self.seq += 1
+        text = f'{{"type":"{kind}","seq":{self.seq},{body[1:]}' if len(body) > 2 else \
+            f'{{"type":"{kind}","seq":{self.seq}}}'
         for conn in list(self.members.values()):
             conn.push(text, droppable)
 
@@ -232,6 +265,24 @@ class LiveRoom:
     def _changed(self) -> None:
         self._arm_clock(restart=False)
         self.broadcast_state()
+        self.observer.room_changed(self.room)
+
+    def resume(self, pending: tuple[int, Shot] | None = None) -> None:
+        """A room restored after a restart (storage): players have the grace period to
+        reconnect with their tokens; a shot that was in flight is played again from its
+        stored start (same result, bit for bit)."""
+        self.ever_joined = any(s is not None for s in self.room.seats)
+        for i, s in enumerate(self.room.seats):
+            if s is not None:
+                self._start_grace(i)
+        if pending is not None:
+            try:
+                self.start_shot(*pending)
+                return
+            except ActionError as exc:
+                log.warning("room %s: stored shot not replayed: %s", self.room.room_id,
+                            exc.message)
+        self._arm_clock(restart=True)
 
     # ---- shots ------------------------------------------------------------------------
 
@@ -240,9 +291,14 @@ class LiveRoom:
             shot = Shot(msg.angle, msg.speed, tuple(msg.tip))
         except ValueError as exc:
             raise ActionError("bad_message", str(exc)) from None
+        self.start_shot(seat, shot)
+
+    def start_shot(self, seat: int | None, shot: Shot) -> None:
+        """Strike `shot` for `seat` (refused with `ActionError`), then simulate and stream."""
         shot_id, before = self.room.begin_shot(seat, shot)
         assert seat is not None
         self._cancel_clock()
+        self.observer.shot_started(self.room, seat, shot, shot_id)
         self._stream = asyncio.get_running_loop().create_task(
             self._play(seat, shot, shot_id, before))
 
@@ -252,7 +308,8 @@ class LiveRoom:
         table = room.match.game.table
         try:
             started = time.perf_counter()
-            result = await asyncio.to_thread(simulate, table, before, shot)
+            result, plan, bodies = await asyncio.to_thread(
+                prepare_shot, table, before, shot, shot_id, self.settings.frame_every)
             self.sim_seconds.append(time.perf_counter() - started)
             outcome = room.apply_shot(result)
         except Exception:
@@ -265,12 +322,18 @@ class LiveRoom:
         loop = asyncio.get_running_loop()
         start = loop.time()
         pace = self.settings.pace
-        for timed in plan_shot(result, shot_id, self.settings.frame_every):
+        superseded_at = superseded_times(plan)
+        for timed, body, stale_at in zip(plan, bodies, superseded_at, strict=True):
             delay = start + timed.at / pace - loop.time()
             if delay > 0:
                 await asyncio.sleep(delay)
+            else:
+                await asyncio.sleep(0)  # running late: still let the senders drain
             room.show(timed)
-            self.broadcast(timed.payload, droppable=timed.droppable)
+            if timed.droppable and start + stale_at / pace <= loop.time():
+                self.frames_skipped += 1  # a newer frame is already due: send that one
+                continue
+            self.broadcast_body(timed.payload["type"], body, droppable=timed.droppable)
         self._send_result(shot_id, "shot", outcome)
         room.end_shot()
         self._after_result()
@@ -287,11 +350,14 @@ class LiveRoom:
         self.broadcast_state()
         self.observer.room_changed(self.room)
 
-    def _conclude(self, cause: str, outcome: Outcome) -> None:
-        """A non-shot outcome (timeout, concession, forfeit): result, next rack, state."""
+    def _conclude(self, cause: str, outcome: Outcome, absent: int | None = None) -> None:
+        """A non-shot outcome (timeout, concession, forfeit): result, next rack, state.
+        `absent`: a seat that forfeited and is still away; the next frame is at stake."""
         self._send_result(None, cause, outcome)
         self.observer.outcome(self.room, cause, outcome)
         self.room.after_outcome()
+        if absent is not None:
+            self._start_grace(absent)
         self._after_result()
 
     # ---- shot clock ---------------------------------------------------------------------
@@ -372,5 +438,4 @@ class LiveRoom:
         del self._grace[seat]
         outcome = self.room.forfeit(seat, f"{seat_info.name} left the table and did not "
                                     "come back.")
-        self._conclude("forfeit", outcome)
-        self._start_grace(seat)  # if the match goes on, the next frame is at stake
+        self._conclude("forfeit", outcome, absent=seat)

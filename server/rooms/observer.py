@@ -16,6 +16,9 @@ if TYPE_CHECKING:
 
 
 class RoomObserver(Protocol):
+    def shot_started(self, room: Room, seat: int, shot: Shot, shot_id: int) -> None:
+        """A shot was struck (the match is still as before it): save what a restart replays."""
+
     def shot_played(self, room: Room, seat: int, shot: Shot, before: BallSet,
                     outcome: Outcome) -> None:
         """A shot was simulated and judged: `before` is the table it was played from."""
@@ -31,6 +34,9 @@ class RoomObserver(Protocol):
 
 
 class NullObserver:
+    def shot_started(self, room: Room, seat: int, shot: Shot, shot_id: int) -> None:
+        pass
+
     def shot_played(self, room: Room, seat: int, shot: Shot, before: BallSet,
                     outcome: Outcome) -> None:
         pass

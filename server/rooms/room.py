@@ -282,9 +282,10 @@ class Room:
             return match.timeout(seat)
 
     def forfeit(self, seat: int, reason: str) -> Outcome:
+        """`seat` loses the current frame (issue 5: an absent player forfeits the frame)."""
         match = self._require_player(seat)
         with _rules():
-            return match.forfeit(seat, reason)
+            return match.forfeit_game(seat, reason)
 
     def vote_rematch(self, seat: int | None) -> bool:
         """Record a rematch request; True when every seat asked and a new match began."""

@@ -12,9 +12,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from server.engine import ShotResult
+from server.engine import Event, ShotResult
 
 SOUND_KINDS = frozenset(("strike", "ball", "cushion", "jaw", "pocket"))
+ALWAYS_SENT = frozenset(("strike", "pocket"))
+MAX_SOUNDS_PER_TICK = 12  # a rack's contacts can come by the thousand in one tick
+SOUND_GAP = 0.05  # s: the same contact again within this is one sound
 
 BallRow = tuple[int, int, int, int]  # id, x_mm, y_mm, cel
 
@@ -49,16 +52,37 @@ def plan_shot(result: ShotResult, shot_id: int, frame_every: int) -> list[Timed]
         items.append(_frame(result, shot_id, k, count))
     if count % frame_every or count == 0:
         items.append(_frame(result, shot_id, count, count))
-    for event in result.events:
-        if event.kind not in SOUND_KINDS:
-            continue
-        event_tick = max(0, math.ceil(event.time / tick - 1e-9))
+    for event_tick, event in _sounds(result.events, tick):
         payload = {"type": "event", "shot": shot_id, "tick": int(event_tick),
                    "t": round(event.time, 4), "kind": event.kind, "ids": list(event.ids),
                    "speed": round(event.speed, 3), "target": event.target}
         items.append((event.time, 0, Timed(event.time, payload, False, tick=event_tick)))
     items.sort(key=lambda item: (item[0], item[1]))
     return [timed for _, _, timed in items]
+
+
+def _sounds(events: list[Event], tick: float) -> list[tuple[int, Event]]:
+    """The events worth a sound, with their tick. A contact (kind, balls, target) that
+    repeats within SOUND_GAP of its last sound is the same sustained touch (a ball pressed by
+    its spin against another collides again every few microseconds) and is not sent again;
+    at most MAX_SOUNDS_PER_TICK a tick, the loudest (strikes and pockets always)."""
+    last: dict[tuple, float] = {}
+    by_tick: dict[int, list[Event]] = {}
+    for event in events:
+        if event.kind not in SOUND_KINDS:
+            continue
+        key = (event.kind, event.ids, event.target)
+        if event.kind not in ALWAYS_SENT and key in last and event.time - last[key] < SOUND_GAP:
+            continue
+        last[key] = event.time
+        by_tick.setdefault(max(0, math.ceil(event.time / tick - 1e-9)), []).append(event)
+    kept = []
+    for event_tick, items in by_tick.items():
+        items.sort(key=lambda e: (e.kind not in ALWAYS_SENT, -e.speed))
+        kept.extend((event_tick, e) for i, e in enumerate(items)
+                    if i < MAX_SOUNDS_PER_TICK or e.kind in ALWAYS_SENT)
+    kept.sort(key=lambda item: item[1].time)
+    return kept
 
 
 def _frame(result: ShotResult, shot_id: int, k: int, count: int) -> tuple[float, int, Timed]:

@@ -86,6 +86,12 @@ class Match:
         name = self.players[seat] if seat in range(len(self.players)) else "?"
         return self._scored(self.game.resign(seat, f"{name} conceded the game."))
 
+    def forfeit_game(self, seat: int, reason: str) -> Outcome:
+        """`seat` loses the current game (frame) for `reason`, not by play: e.g. left the
+        table and did not come back in time. The match goes on unless that was the race."""
+        self._check_open()
+        return self._scored(self.game.resign(seat, reason))
+
     def forfeit(self, seat: int, reason: str) -> Outcome:
         """`seat` loses the match (e.g. left and did not come back); `reason` says why."""
         self._check_open()

@@ -61,8 +61,8 @@ def test_slow_spectator_has_stale_frames_skipped_but_keeps_what_matters(settings
             live, slow = spectator_connection(client, room_id)
             fast_send = slow.send_text
 
-            async def crawl(text: str) -> None:
-                await asyncio.sleep(0.01)
+            async def crawl(text: str) -> None:  # far slower than the stream, however late
+                await asyncio.sleep(0.04)
                 await fast_send(text)
 
             slow.send_text = crawl

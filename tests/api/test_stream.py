@@ -133,3 +133,37 @@ def test_rest_state_is_the_same_over_http_and_websocket(client):
         http_state = client.get(f"/api/rooms/{room_id}").json()["state"]
     assert http_state["balls"] == final["balls"]
     assert http_state["match"] == final["match"]
+
+
+def test_a_late_room_skips_stale_frames_but_never_events_or_the_last_frame(settings):
+    """The loop stalls mid-shot (an overloaded server): the frames that fell due meanwhile
+    are not sent as a burst; the stream stays gapless and ends exactly as planned."""
+    import time
+
+    with make_client(settings, pace=1.0) as client:
+        room_id, ta, _ = seated_room(client)
+        live = client.app.state.registry.get(room_id)
+        show = live.room.show
+        stalled = []
+
+        def stall_once(timed):
+            if timed.balls is not None and not stalled:
+                stalled.append(timed.tick)
+                time.sleep(1.0)  # blocks the event loop: 20 frames fall due
+            show(timed)
+
+        live.room.show = stall_once
+        with connect(client, room_id, ta) as a:
+            greet(a)
+            a.send_json(BREAK)
+            stream = receive_until(a, "state")
+    seqs = [m["seq"] for m in stream]
+    assert seqs == list(range(seqs[0], seqs[0] + len(seqs)))
+    frames = [m for m in stream if m["type"] == "frame"]
+    ticks = [f["tick"] for f in frames]
+    every = settings.frame_every
+    assert live.frames_skipped >= 15
+    assert not any(stalled[0] < t < stalled[0] + 15 * every for t in ticks)  # skipped
+    assert frames[-1].get("last") is True
+    events = [m for m in stream if m["type"] == "event"]
+    assert len(events) > 20 and events[0]["kind"] == "strike"

@@ -149,17 +149,22 @@ def test_player_who_reconnects_within_grace_keeps_playing(settings):
                 assert got[-1]["phase"] == "aiming"
 
 
-def test_player_who_stays_away_forfeits(settings):
+def test_player_who_stays_away_forfeits_a_frame_per_grace_period(settings):
     with make_client(settings, grace=0.3) as client:
-        room_id, ta, tb = seated_room(client, shot_clock=0, race_to=3)
+        room_id, ta, tb = seated_room(client, shot_clock=0, race_to=2)
         with connect(client, room_id, ta) as a:
             greet(a)
             with connect(client, room_id, tb) as b:
                 greet(b)
-            result = receive_until(a, "shot_result")[-1]
-            assert result["cause"] == "forfeit" and result["outcome"]["shooter"] == 1
-            assert result["match_over"] and result["match_winner"] == 0
-            assert "left the table" in result["outcome"]["message"]
+            first = receive_until(a, "shot_result")[-1]
+            assert first["cause"] == "forfeit" and first["outcome"]["shooter"] == 1
+            assert "left the table" in first["outcome"]["message"]
+            assert first["score"] == [1, 0] and not first["match_over"]
+            state = receive_until(a, "state")[-1]
+            assert state["grace"][0]["seat"] == 1  # the next frame is at stake
+            second = receive_until(a, "shot_result")[-1]
+            assert second["cause"] == "forfeit" and second["score"] == [2, 0]
+            assert second["match_over"] and second["match_winner"] == 0
 
 
 def test_second_socket_for_a_seat_replaces_the_first(client):

@@ -26,7 +26,7 @@ CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-backg
 E2E_SETTINGS = Settings(pace=2.0)
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="package")
 def base_url() -> Iterator[str]:
     """A live server; the engine is compiled first so the first shot does not wait for it."""
     table = Table.pool("9ft")
@@ -48,8 +48,10 @@ def base_url() -> Iterator[str]:
     thread.join(timeout=10)
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="package")
 def browser() -> Iterator[Browser]:
+    """Package scope: Playwright's sync API keeps an event loop running in this thread
+    while it is open, which would break `asyncio.run` in the tests that come after."""
     with sync_playwright() as p:
         b = p.chromium.launch(executable_path="/usr/bin/chromium", args=CHROMIUM_ARGS)
         yield b

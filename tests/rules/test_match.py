@@ -64,6 +64,16 @@ def test_forfeit_loses_the_match() -> None:
     assert match.public_state()["match_reason"] == "Ana left and did not come back."
 
 
+def test_forfeit_game_loses_only_the_frame_until_the_race_is_over() -> None:
+    match = Match("eight_ball", ("Ana", "Bob"), race_to=2, table=TABLE)
+    outcome = match.forfeit_game(0, "Ana left the table and did not come back.")
+    assert outcome.frame_over and outcome.winner == 1 and match.score == [0, 1]
+    assert not match.over and outcome.message.startswith("Ana left the table")
+    match.next_game()
+    match.forfeit_game(0, "Ana left the table and did not come back.")
+    assert match.over and match.winner == 1 and match.score == [0, 2]
+
+
 def test_forfeit_between_games() -> None:
     match = Match("eight_ball", ("Ana", "Bob"), race_to=5, table=TABLE)
     match.concede(1)
