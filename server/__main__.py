@@ -3,25 +3,28 @@
 from __future__ import annotations
 
 import argparse
+import gc
 import logging
 
 import uvicorn
 
 from server.app import create_app
 from server.config import Settings
+from server.rooms.live import warm_up
 
 
 def uvicorn_config(app: object, host: str, port: int, settings: Settings,
                    **extra: object) -> uvicorn.Config:
     """WebSocket limits set explicitly (uvicorn's defaults are 16 MiB and 20 s/20 s).
 
-    permessage-deflate stays on: a break costs a client ~1.8 KB/s with it, ~7.6 KB/s
-    without (`python -m bench.stream`).
+    permessage-deflate (`POOL_WS_DEFLATE`, on by default): a break costs a client
+    ~1.8 KB/s with it, ~7.6 KB/s without (`python -m bench.stream`), for more server CPU
+    per message and client (docs/performance.md).
     """
     return uvicorn.Config(app, host=host, port=port, ws_max_size=settings.max_message,
                           ws_ping_interval=settings.ws_ping_interval,
                           ws_ping_timeout=settings.ws_ping_timeout,
-                          ws_per_message_deflate=True,
+                          ws_per_message_deflate=settings.ws_deflate,
                           workers=1, proxy_headers=False, **extra)
 
 
@@ -35,6 +38,14 @@ def main(argv: list[str] | None = None) -> None:
     settings = Settings.from_env()
     config = uvicorn_config(create_app(settings), args.host, args.port, settings,
                             log_level=args.log_level)
+    warm_up(settings.frame_every)
+    # Everything loaded so far (numba, numpy, pydantic, the app) lives as long as the
+    # process: keep it out of the cyclic collector, whose full passes over it stalled every
+    # room's stream for up to ~200 ms under load (docs/performance.md).
+    gc.freeze()
+    # Every message sent allocates a few short-lived containers (ASGI dicts): collect the
+    # young generation less often, so full passes come seconds apart, not many a second.
+    gc.set_threshold(20_000, 20, 20)
     uvicorn.Server(config).run()
 
 

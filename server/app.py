@@ -16,6 +16,7 @@ from server.api.matches import router as matches_router
 from server.api.ws import router as ws_router
 from server.config import Settings
 from server.rooms import RoomRegistry
+from server.rooms.live import warm_up
 from server.rooms.observer import RoomObserver
 from server.store import Database, StoreObserver, default_db_path
 from server.store.restore import restore_rooms
@@ -38,17 +39,20 @@ def create_app(settings: Settings | None = None,
 
     @contextlib.asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
+        await asyncio.to_thread(warm_up, settings.frame_every)
         store.open()
         if isinstance(observer, StoreObserver):
             observer.start()
             restore_rooms(store, registry, settings, observer)
-        sweeper = asyncio.create_task(registry.run_sweeper())
+        background = [asyncio.create_task(registry.run_sweeper()),
+                      asyncio.create_task(registry.run_watchdog())]
         try:
             yield
         finally:
-            sweeper.cancel()
-            with contextlib.suppress(asyncio.CancelledError):
-                await sweeper
+            for task in background:
+                task.cancel()
+                with contextlib.suppress(asyncio.CancelledError):
+                    await task
             if isinstance(observer, StoreObserver):
                 observer.stop()  # the saved rooms stay saved for the next start
             registry.close_all(CLOSE_RESTART, "server_restart")

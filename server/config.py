@@ -28,15 +28,17 @@ class Settings:
 
     tick_hz: int = 120  # the engine's tick (DEFAULT_TICK = 1/120)
     frame_every: int = 6  # send every 6th tick: 20 frames/s (see docs/protocol.md)
+    frames_per_message: int = 2  # ... in 10 `frame` messages/s, each one frame ahead
     pace: float = 1.0  # playback speed-up (tests only; 1.0 is real time)
 
     allowed_origins: tuple[str, ...] = ()  # beside same-origin; "*" allows any
     max_message: int = 16 * KIB
     send_queue: int = 64  # messages waiting for one client
-    send_timeout: float = 5.0  # a single send that takes longer drops the client
+    send_timeout: float = 5.0  # a client that cannot take what is queued in this long is dropped
     rate_burst: float = 40.0  # token bucket per connection: burst ...
     rate_per_second: float = 20.0  # ... and sustained messages per second
     ws_ping_interval: float = 20.0
+    ws_deflate: bool = True  # permessage-deflate: ~5x less bandwidth, more server CPU
     ws_ping_timeout: float = 20.0
 
     web_dir: Path = field(default=REPO_ROOT / "web")
@@ -51,7 +53,9 @@ class Settings:
             raw = env.get(f"POOL_{name.upper()}")
             if raw is None:
                 continue
-            if isinstance(value, tuple):
+            if isinstance(value, bool):
+                changes[name] = raw.strip().lower() in ("1", "true", "yes", "on")
+            elif isinstance(value, tuple):
                 changes[name] = tuple(o.strip() for o in raw.split(",") if o.strip())
             elif isinstance(value, Path):
                 changes[name] = Path(raw)

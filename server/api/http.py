@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from fastapi import APIRouter, HTTPException, Request, status
+from typing import Annotated
+
+from fastapi import APIRouter, HTTPException, Query, Request, status
 
 from server.rooms import ActionError, RoomRegistry
 from server.rooms.live import LiveRoom
@@ -17,6 +19,7 @@ from .schemas import (
     RoomDetail,
     RoomList,
     RoomSummary,
+    ServerStats,
 )
 
 router = APIRouter()
@@ -38,6 +41,15 @@ def _room(request: Request, room_id: str) -> LiveRoom:
 @router.get("/health", response_model=Health, tags=["meta"])
 async def health() -> dict:
     return {"status": "ok"}
+
+
+@router.get("/api/stats", response_model=ServerStats, tags=["meta"])
+async def server_stats(request: Request,
+                       window: Annotated[float, Query(gt=0, le=600, allow_inf_nan=False)] = 60.0
+                       ) -> dict:
+    """Load and stream health: rooms, connections, messages waiting in outboxes, and how
+    late frames left the server (percentiles over the last `window` seconds)."""
+    return _registry(request).stats(window)
 
 
 @router.post("/api/rooms", status_code=status.HTTP_201_CREATED, response_model=RoomCreated,

@@ -121,6 +121,7 @@ async def replay_shot(match_id: int, n: int, request: Request,
         raise _missing("match")
     if shot is None:
         raise _missing("shot")
-    frame_every = request.app.state.settings.frame_every
-    return StreamingResponse(stream_replay(shot, match, frame_every, pace),
+    settings = request.app.state.settings
+    return StreamingResponse(stream_replay(shot, match, settings.frame_every,
+                                           settings.frames_per_message, pace),
                              media_type="application/x-ndjson")

@@ -197,17 +197,28 @@ class Welcome(ServerMessage):
     seq: int
     tick_hz: int
     frame_every: int
+    frames_per_message: int = 1
     server_time: float
 
 
+class AheadFrame(BaseModel):
+    """A later tick sent early inside a `frame` message, to be shown at its own tick."""
+
+    model_config = ConfigDict(extra="forbid")
+    tick: int
+    b: list[tuple[int, int, int, int]]
+
+
 class FrameMessage(ServerMessage):
-    """One streamed tick: `b` holds [id, x_mm, y_mm, cel] for every ball on the table."""
+    """One streamed tick: `b` holds [id, x_mm, y_mm, cel] for every ball on the table;
+    `ahead` the next ticks of the stream, sent early (`frames_per_message` - 1 of them)."""
 
     type: Literal["frame"] = "frame"
     seq: int
     shot: int
     tick: int
     b: list[tuple[int, int, int, int]]
+    ahead: list[AheadFrame] | None = None
     last: bool | None = None
 
 

@@ -66,6 +66,24 @@ class Health(BaseModel):
     status: Literal["ok"]
 
 
+class StreamStats(BaseModel):
+    window: float
+    frames: int  # frame messages sent in the window
+    late_p50_ms: float | None  # behind the shot's schedule when sent
+    late_p99_ms: float | None
+    late_max_ms: float | None
+    frames_sent: int  # since start
+    frames_skipped: int  # since start: stale when their turn came (server overloaded)
+
+
+class ServerStats(BaseModel):
+    rooms: int
+    rolling: int  # rooms with balls moving
+    connections: int
+    queued: int  # messages waiting in the members' outboxes
+    stream: StreamStats
+
+
 class ErrorBody(BaseModel):
     code: str
     message: str

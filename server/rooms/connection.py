@@ -2,8 +2,9 @@
 
 The room never awaits a client. `push` only appends; when the queue is full the oldest
 droppable message (a stale frame or aim relay) goes first, and a client that is still
-too far behind is closed with 1013 so it reconnects and gets a fresh `state`. Each send has
-a timeout, so a peer that stops reading is dropped instead of holding anything up.
+too far behind is closed with 1013 so it reconnects and gets a fresh `state`. Sending what
+is queued has a deadline (watched by the registry), so a peer that stops reading is dropped
+instead of holding anything up.
 """
 
 from __future__ import annotations
@@ -36,6 +37,8 @@ class Connection:
     close_reason: str = ""
     _queue: deque[tuple[str, bool]] = field(default_factory=deque)
     _wake: asyncio.Event = field(default_factory=asyncio.Event)
+    _sending_since: float | None = None  # loop time the batch being sent started
+    _sender: asyncio.Task | None = None
 
     def push(self, text: str, droppable: bool = False) -> None:
         """Queue a message without waiting; never blocks the caller."""
@@ -71,20 +74,39 @@ class Connection:
         return len(self._queue)
 
     async def run_sender(self) -> None:
-        """Send queued messages in order until closed; returns when the room closed us."""
+        """Send queued messages in order until closed; returns when the room closed us.
+
+        What is queued when a batch starts goes out under one deadline, checked by the
+        registry's watchdog (`check_deadline`) rather than a timer per message: a peer that
+        cannot take its backlog in `send_timeout` is dropped."""
+        self._sender = asyncio.current_task()
+        loop = asyncio.get_running_loop()
         while True:
             while not self._queue and self.close_code is None:
                 self._wake.clear()
                 await self._wake.wait()
             if self.close_code is not None:
                 return
-            text, _ = self._queue.popleft()
+            self._sending_since = loop.time()
             try:
-                async with asyncio.timeout(self.send_timeout):  # no task per send
+                for _ in range(len(self._queue)):
+                    if not self._queue or self.close_code is not None:
+                        break
+                    text, _ = self._queue.popleft()
                     await self.send_text(text)
-            except TimeoutError:
-                self.close(CLOSE_TOO_SLOW, "too_slow")
-                return
+            finally:
+                self._sending_since = None
+
+    def check_deadline(self, now: float) -> bool:
+        """Drop the client (1013) if its current batch has been sending for longer than
+        `send_timeout` (loop time `now`); True if it was dropped."""
+        since = self._sending_since
+        if since is None or now - since <= self.send_timeout or self.close_code is not None:
+            return False
+        self.close(CLOSE_TOO_SLOW, "too_slow")
+        if self._sender is not None:
+            self._sender.cancel()
+        return True
 
 
 async def cancel_quietly(task: asyncio.Task) -> None:

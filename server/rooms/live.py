@@ -7,7 +7,6 @@ pushed into each member's bounded outbox (`Connection`) and its own task sends t
 from __future__ import annotations
 
 import asyncio
-import json
 import logging
 import math
 import time
@@ -21,29 +20,36 @@ from server.api.messages import (
     Shoot,
 )
 from server.config import Settings
-from server.engine import BallSet, Shot, ShotResult, Table, simulate
+from server.engine import BallSet, Shot, ShotResult, Table, rack, simulate
 from server.rules import Outcome
 
 from .connection import CLOSE_REPLACED, Connection
 from .errors import ActionError
+from .metrics import StreamMetrics
 from .observer import NullObserver, RoomObserver
 from .room import Room
-from .stream import Timed, plan_shot
+from .stream import ShotPlan, Timed, encode, message_text, plan_shot
 
 log = logging.getLogger(__name__)
 
 
-def encode(payload: dict) -> str:
-    return json.dumps(payload, separators=(",", ":"), allow_nan=False)
+__all__ = ["LiveRoom", "encode", "prepare_shot"]  # `encode` for the API layer
 
 
 def prepare_shot(table: Table, before: BallSet, shot: Shot, shot_id: int,
-                 frame_every: int) -> tuple[ShotResult, list[Timed], list[str]]:
+                 frame_every: int, frames_per_message: int) -> tuple[ShotResult, ShotPlan]:
     """Simulate and plan a shot and encode its messages (runs in a worker thread)."""
     result = simulate(table, before, shot)
-    plan = plan_shot(result, shot_id, frame_every)
-    bodies = [encode({k: v for k, v in t.payload.items() if k != "type"}) for t in plan]
-    return result, plan, bodies
+    return result, plan_shot(result, shot_id, frame_every, frames_per_message)
+
+
+def warm_up(frame_every: int = 6) -> None:
+    """Load the compiled engine and frame encoder (numba's cache; compiled on a fresh
+    clone) before the first player shoots: the first call takes ~0.4 s, and holds the GIL
+    the event loop needs, so doing it at a shot would stall every room's stream."""
+    table = Table.pool("9ft")
+    balls = rack("eight_ball", table, seed=0)
+    prepare_shot(table, balls, Shot(0.0, 9.0), 0, frame_every, 2)
 
 
 def superseded_times(plan: list[Timed]) -> list[float]:
@@ -54,7 +60,7 @@ def superseded_times(plan: list[Timed]) -> list[float]:
     next_frame = math.inf
     for i in range(len(plan) - 1, -1, -1):
         times[i] = next_frame
-        if plan[i].balls is not None:
+        if plan[i].frame is not None:
             next_frame = plan[i].at
     return times
 
@@ -80,6 +86,7 @@ class LiveRoom:
         self.ever_joined = False
         self.sim_seconds: list[float] = []  # wall time of each simulate(), for measuring
         self.frames_skipped = 0  # frames not sent because the loop was late (overload)
+        self.metrics = StreamMetrics(capacity=1)  # the registry shares one for all rooms
         self._clock: _Timer | None = None
         self._grace: dict[int, _Timer] = {}
         self._stream: asyncio.Task | None = None
@@ -99,8 +106,7 @@ class LiveRoom:
         """`broadcast` of a message whose JSON without `type` and `seq` is ready (`body`):
         the stream encodes a shot's messages once, off the event loop."""
         self.seq += 1
-        text = f'{{"type":"{kind}","seq":{self.seq},{body[1:]}' if len(body) > 2 else \
-            f'{{"type":"{kind}","seq":{self.seq}}}'
+        text = message_text(kind, self.seq, body)
         for conn in list(self.members.values()):
             conn.push(text, droppable)
 
@@ -165,6 +171,7 @@ class LiveRoom:
                           "name": conn.name, "seq": self.seq,
                           "tick_hz": self.settings.tick_hz,
                           "frame_every": self.settings.frame_every,
+                          "frames_per_message": self.settings.frames_per_message,
                           "server_time": time.time()})
         self.reply(conn, self.state_payload())
         self.broadcast_presence()
@@ -308,8 +315,9 @@ class LiveRoom:
         table = room.match.game.table
         try:
             started = time.perf_counter()
-            result, plan, bodies = await asyncio.to_thread(
-                prepare_shot, table, before, shot, shot_id, self.settings.frame_every)
+            result, plan = await asyncio.to_thread(
+                prepare_shot, table, before, shot, shot_id, self.settings.frame_every,
+                self.settings.frames_per_message)
             self.sim_seconds.append(time.perf_counter() - started)
             outcome = room.apply_shot(result)
         except Exception:
@@ -322,18 +330,25 @@ class LiveRoom:
         loop = asyncio.get_running_loop()
         start = loop.time()
         pace = self.settings.pace
-        superseded_at = superseded_times(plan)
-        for timed, body, stale_at in zip(plan, bodies, superseded_at, strict=True):
-            delay = start + timed.at / pace - loop.time()
-            if delay > 0:
-                await asyncio.sleep(delay)
-            else:
-                await asyncio.sleep(0)  # running late: still let the senders drain
-            room.show(timed)
-            if timed.droppable and start + stale_at / pace <= loop.time():
-                self.frames_skipped += 1  # a newer frame is already due: send that one
-                continue
-            self.broadcast_body(timed.payload["type"], body, droppable=timed.droppable)
+        superseded_at = superseded_times(plan.messages)
+        try:
+            for timed, stale_at in zip(plan, superseded_at, strict=True):
+                delay = start + timed.at / pace - loop.time()
+                if delay > 0:
+                    await asyncio.sleep(delay)
+                else:
+                    await asyncio.sleep(0)  # running late: still let the senders drain
+                room.show(timed, plan.frames)
+                now = loop.time()
+                if timed.droppable and start + stale_at / pace <= now:
+                    self.frames_skipped += 1  # a newer frame is already due: send that one
+                    self.metrics.skipped()
+                    continue
+                if timed.frame is not None:
+                    self.metrics.sent(now, now - start - timed.at / pace)
+                self.broadcast_body(timed.kind, timed.body, droppable=timed.droppable)
+        except Exception:  # a bug here must not leave the table busy for ever
+            log.exception("streaming shot %s in room %s failed", shot_id, room.room_id)
         self._send_result(shot_id, "shot", outcome)
         room.end_shot()
         self._after_result()

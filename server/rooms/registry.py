@@ -1,4 +1,5 @@
-"""All live rooms of this process, and the sweeper that expires idle ones."""
+"""All live rooms of this process, the sweeper that expires idle ones, and the watchdog
+that drops members who stopped reading."""
 
 from __future__ import annotations
 
@@ -10,6 +11,7 @@ from server.config import Settings
 
 from .errors import ActionError
 from .live import LiveRoom
+from .metrics import StreamMetrics
 from .observer import RoomObserver
 from .room import Room
 from .tokens import new_room_id
@@ -25,6 +27,7 @@ class RoomRegistry:
         self.settings = settings
         self.observer = observer
         self.rooms: dict[str, LiveRoom] = {}
+        self.metrics = StreamMetrics()
 
     def create(self, game: str, race_to: int = 1, shot_clock: float | None = None) -> LiveRoom:
         if len(self.rooms) >= self.settings.max_rooms:
@@ -35,6 +38,7 @@ class RoomRegistry:
         clock = self.settings.shot_clock if shot_clock is None else shot_clock
         room = Room(room_id, game, race_to=race_to, shot_clock=clock, created_at=time.time())
         live = LiveRoom(room, self.settings, self.observer)
+        live.metrics = self.metrics
         self.rooms[room_id] = live
         if self.observer is not None:
             self.observer.room_changed(room)
@@ -42,6 +46,7 @@ class RoomRegistry:
 
     def add(self, live: LiveRoom) -> None:
         """Put back a restored room (storage, issue 7)."""
+        live.metrics = self.metrics
         self.rooms[live.room.room_id] = live
 
     def get(self, room_id: str) -> LiveRoom | None:
@@ -63,6 +68,29 @@ class RoomRegistry:
         while True:
             await asyncio.sleep(self.settings.sweep_interval)
             self.sweep()
+
+    def check_senders(self, now: float) -> int:
+        """Drop every member whose outbox has been stuck past its deadline (loop time)."""
+        return sum(conn.check_deadline(now) for live in list(self.rooms.values())
+                   for conn in list(live.members.values()))
+
+    def stats(self, window: float) -> dict:
+        """Rooms, members and the frame send lateness of the last `window` seconds."""
+        now = asyncio.get_running_loop().time()
+        members = [c for live in self.rooms.values() for c in live.members.values()]
+        return {"rooms": len(self.rooms),
+                "rolling": sum(live.room.shot is not None for live in self.rooms.values()),
+                "connections": len(members),
+                "queued": sum(c.pending for c in members),
+                "stream": self.metrics.summary(now, window)}
+
+    async def run_watchdog(self) -> None:
+        """A few checks a second for all connections: cheaper than a timer per send."""
+        loop = asyncio.get_running_loop()
+        interval = min(1.0, self.settings.send_timeout / 4)
+        while True:
+            await asyncio.sleep(interval)
+            self.check_senders(loop.time())
 
     def close_all(self, code: int, reason: str) -> None:
         for live in self.rooms.values():

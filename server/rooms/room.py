@@ -7,6 +7,7 @@ nothing; rules refusals keep the rules' own codes.
 
 from __future__ import annotations
 
+import functools
 import secrets
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -14,14 +15,21 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from server.engine import BallSet, Shot, ShotResult
+from server.engine import BallSet, Shot, ShotResult, Table
 from server.rules import GAME_KINDS, Match, Outcome, RulesError
 
 from .errors import ActionError
-from .stream import BallRow, Timed, frame_rows
+from .stream import BallRow, StreamFrames, Timed, frame_rows
 from .tokens import hash_token, new_token, token_matches
 
 WAITING, AIMING, ROLLING, OVER = "waiting", "aiming", "rolling", "over"
+
+
+@functools.lru_cache(maxsize=8)
+def _table_dict(table: Table) -> dict:
+    """A table never changes: its geometry goes into every `state`, built once. (The
+    encoder only reads it.)"""
+    return table.to_dict()
 MAX_NAME = 24
 
 
@@ -39,10 +47,19 @@ class ShotInProgress:
     id: int
     seat: int
     match_before: dict  # the match as it was when the shot was struck
-    balls: list[BallRow]
+    before: list[BallRow]  # the table when it was struck
     ticks: int = 0  # last tick of the shot (0 while it is being simulated)
     tick: int = 0  # the tick shown now
     outcome: Outcome | None = None
+    shown: tuple[StreamFrames, int] | None = None  # the frame shown now
+
+    @property
+    def balls(self) -> list[BallRow]:
+        """The table as shown now (rows built on demand: only a joining member needs them)."""
+        if self.shown is None:
+            return self.before
+        frames, j = self.shown
+        return frames.rows(j)
 
 
 @dataclass
@@ -155,10 +172,7 @@ class Room:
         return frame_rows(balls.ids, balls.positions, cels, balls.on_table)
 
     def table_dict(self) -> dict:
-        from server.engine import Table
-
-        table = self.match.game.table if self.match else Table.pool("9ft")
-        return table.to_dict()
+        return _table_dict(self.match.game.table if self.match else Table.pool("9ft"))
 
     def state_body(self, clock: dict | None, grace: list[dict]) -> dict:
         """The `state` message without `type` and `seq`."""
@@ -217,12 +231,15 @@ class Room:
     def abort_shot(self) -> None:
         self.shot = None
 
-    def show(self, timed: Timed) -> None:
-        """The stream has reached `timed`: remember what a member joining now must see."""
-        if self.shot is not None and timed.balls is not None:
-            self.shot.balls = timed.balls
-            self.shot.tick = timed.tick
-            self._cels.update((row[0], row[3]) for row in timed.balls)
+    def show(self, timed: Timed, frames: StreamFrames) -> None:
+        """The stream has reached `timed`: remember what a member joining now must see,
+        and after the last frame the cel each ball stopped on."""
+        if self.shot is None or timed.frame is None:
+            return
+        self.shot.shown = (frames, timed.frame)
+        self.shot.tick = timed.tick
+        if not timed.droppable:  # the last frame
+            self._cels.update((row[0], row[3]) for row in frames.rows(timed.frame))
 
     def end_shot(self) -> None:
         self.shot = None

@@ -7,12 +7,16 @@ left out: clients make sounds from the others.
 
 from __future__ import annotations
 
+import json
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 import numpy as np
 
 from server.engine import Event, ShotResult
+
+from .frame_codec import encode_frames
 
 SOUND_KINDS = frozenset(("strike", "ball", "cushion", "jaw", "pocket"))
 ALWAYS_SENT = frozenset(("strike", "pocket"))
@@ -22,15 +26,33 @@ SOUND_GAP = 0.05  # s: the same contact again within this is one sound
 BallRow = tuple[int, int, int, int]  # id, x_mm, y_mm, cel
 
 
+def encode(payload: dict) -> str:
+    """Compact JSON; NaN is refused (it is not JSON)."""
+    return json.dumps(payload, separators=(",", ":"), allow_nan=False)
+
+
+def message_text(kind: str, seq: int, body: str) -> str:
+    """A message from its pre-encoded `body` (JSON without `type` and `seq`): string
+    formatting only, so a room adds the sequence number without encoding again."""
+    if len(body) > 2:
+        return f'{{"type":"{kind}","seq":{seq},{body[1:]}'
+    return f'{{"type":"{kind}","seq":{seq}}}'
+
+
 @dataclass(frozen=True)
 class Timed:
     """One message of the stream, `at` seconds after the strike."""
 
     at: float
-    payload: dict  # without `seq`, which the room assigns on sending
+    kind: str  # "frame" or "event"
+    body: str  # the JSON without `type` and `seq`, which the room adds on sending
     droppable: bool
-    balls: list[BallRow] | None = None  # for frames: the table shown from now on
     tick: int = 0
+    frame: int | None = None  # for frames: the index in the plan's `StreamFrames`
+
+    @property
+    def payload(self) -> dict:
+        return {"type": self.kind, **json.loads(self.body)}
 
 
 def frame_rows(ids: np.ndarray, positions: np.ndarray, cels: np.ndarray,
@@ -42,23 +64,93 @@ def frame_rows(ids: np.ndarray, positions: np.ndarray, cels: np.ndarray,
     return [(i, x, y, c) for i, x, y, c, on in rows if on]
 
 
-def plan_shot(result: ShotResult, shot_id: int, frame_every: int) -> list[Timed]:
-    """Every frame and event message of a shot, in sending order."""
+@dataclass(frozen=True)
+class StreamFrames:
+    """The frames a shot streams, in integer millimetres, as arrays: the rows a member
+    joining mid-shot is shown are built only when someone joins."""
+
+    ids: np.ndarray  # (N,)
+    ticks: np.ndarray  # (F,) the tick each frame shows
+    mm: np.ndarray  # (F, N, 2) int64
+    cels: np.ndarray  # (F, N)
+    on_table: np.ndarray  # (F, N) bool
+
+    def __len__(self) -> int:
+        return len(self.ticks)
+
+    def rows(self, j: int) -> list[BallRow]:
+        rows = zip(self.ids.tolist(), self.mm[j, :, 0].tolist(), self.mm[j, :, 1].tolist(),
+                   self.cels[j].tolist(), self.on_table[j].tolist(), strict=True)
+        return [(i, x, y, c) for i, x, y, c, on in rows if on]
+
+
+@dataclass(frozen=True)
+class ShotPlan:
+    """Everything a room streams for one shot, encoded once, in sending order."""
+
+    frames: StreamFrames
+    messages: list[Timed]
+
+    def __iter__(self) -> Iterator[Timed]:
+        return iter(self.messages)
+
+    def __len__(self) -> int:
+        return len(self.messages)
+
+
+def stream_frames(result: ShotResult, frame_every: int) -> StreamFrames:
+    """Every `frame_every`-th tick and the last one (tick 0: the table at rest, when a shot
+    has no tick at all)."""
     frames = result.frames
-    tick = frames.tick
     count = len(frames)
-    items: list[tuple[float, int, Timed]] = []
-    for k in range(frame_every, count + 1, frame_every):
-        items.append(_frame(result, shot_id, k, count))
+    ticks = list(range(frame_every, count + 1, frame_every))
     if count % frame_every or count == 0:
-        items.append(_frame(result, shot_id, count, count))
+        ticks.append(count)
+    if count == 0:
+        final = result.final
+        return StreamFrames(result.ids, np.array(ticks, dtype=np.int64),
+                            np.rint(final.positions * 1000.0).astype(np.int64)[None],
+                            np.zeros((1, len(result.ids)), dtype=np.int64),
+                            final.on_table.copy()[None])
+    index = np.array(ticks, dtype=np.int64) - 1
+    return StreamFrames(result.ids, index + 1,
+                        np.rint(frames.positions[index] * 1000.0).astype(np.int64),
+                        frames.cels[index].astype(np.int64), frames.on_table[index])
+
+
+def plan_shot(result: ShotResult, shot_id: int, frame_every: int,
+              frames_per_message: int = 1) -> ShotPlan:
+    """Every frame and event message of a shot, encoded, in sending order.
+
+    With `frames_per_message` m > 1 a `frame` message goes out every m-th frame and carries
+    the next m-1 frames early in `ahead` (the client plays them at their own ticks): the
+    same positions at 1/m of the messages, which is what a server pays for per client.
+    The last frame always goes alone, at its time."""
+    if frames_per_message < 1:
+        raise ValueError("frames_per_message must be at least 1")
+    tick = result.frames.tick
+    frames = stream_frames(result, frame_every)
+    last = len(frames) - 1
+    bodies = encode_frames(shot_id, frames.ticks, frames.ids, frames.mm, frames.cels,
+                           frames.on_table, last)
+    ticks = frames.ticks.tolist()
+    items: list[tuple[float, int, Timed]] = []
+    for j in [*range(0, last, frames_per_message), last]:
+        body = bodies[j]
+        ahead = range(j + 1, min(j + frames_per_message, last))
+        if ahead:
+            rest = ",".join("{" + bodies[i][bodies[i].index('"tick"'):] for i in ahead)
+            body = f'{body[:-1]},"ahead":[{rest}]}}'
+        at = ticks[j] * tick
+        items.append((at, 1, Timed(at, "frame", body, j != last, tick=ticks[j], frame=j)))
     for event_tick, event in _sounds(result.events, tick):
-        payload = {"type": "event", "shot": shot_id, "tick": int(event_tick),
-                   "t": round(event.time, 4), "kind": event.kind, "ids": list(event.ids),
-                   "speed": round(event.speed, 3), "target": event.target}
-        items.append((event.time, 0, Timed(event.time, payload, False, tick=event_tick)))
+        body = encode({"shot": shot_id, "tick": int(event_tick), "t": round(event.time, 4),
+                       "kind": event.kind, "ids": list(event.ids),
+                       "speed": round(event.speed, 3), "target": event.target})
+        items.append((event.time, 0, Timed(event.time, "event", body, False,
+                                           tick=event_tick)))
     items.sort(key=lambda item: (item[0], item[1]))
-    return [timed for _, _, timed in items]
+    return ShotPlan(frames, [timed for _, _, timed in items])
 
 
 def _sounds(events: list[Event], tick: float) -> list[tuple[int, Event]]:
@@ -83,18 +175,3 @@ def _sounds(events: list[Event], tick: float) -> list[tuple[int, Event]]:
                     if i < MAX_SOUNDS_PER_TICK or e.kind in ALWAYS_SENT)
     kept.sort(key=lambda item: item[1].time)
     return kept
-
-
-def _frame(result: ShotResult, shot_id: int, k: int, count: int) -> tuple[float, int, Timed]:
-    frames = result.frames
-    at = k * frames.tick
-    if count == 0:  # nothing moved (cannot happen for a legal shot; keep the stream whole)
-        rows = frame_rows(result.ids, result.final.positions, np.zeros(len(result.ids), int),
-                          result.final.on_table)
-    else:
-        i = k - 1
-        rows = frame_rows(result.ids, frames.positions[i], frames.cels[i], frames.on_table[i])
-    payload: dict = {"type": "frame", "shot": shot_id, "tick": k, "b": rows}
-    if k == count:
-        payload["last"] = True
-    return at, 1, Timed(at, payload, k != count, balls=rows, tick=k)

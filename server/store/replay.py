@@ -10,8 +10,7 @@ import asyncio
 from collections.abc import AsyncIterator
 
 from server.engine import BallSet, Shot, ShotResult, Table, simulate
-from server.rooms.live import encode
-from server.rooms.stream import Timed, plan_shot
+from server.rooms.stream import ShotPlan, encode, message_text, plan_shot
 
 from .records import MatchRecord, ShotRecord
 
@@ -22,9 +21,9 @@ def resimulate(record: ShotRecord) -> ShotResult:
                     Shot(shot["angle"], shot["speed"], (shot["tip"][0], shot["tip"][1])))
 
 
-def replay_plan(record: ShotRecord, frame_every: int) -> list[Timed]:
+def replay_plan(record: ShotRecord, frame_every: int, frames_per_message: int = 1) -> ShotPlan:
     """The `frame` and `event` messages of the shot, as the live room sent them."""
-    return plan_shot(resimulate(record), record.room_shot, frame_every)
+    return plan_shot(resimulate(record), record.room_shot, frame_every, frames_per_message)
 
 
 def result_message(record: ShotRecord, match: MatchRecord) -> dict:
@@ -34,9 +33,10 @@ def result_message(record: ShotRecord, match: MatchRecord) -> dict:
 
 
 async def stream_replay(record: ShotRecord, match: MatchRecord, frame_every: int,
+                        frames_per_message: int,
                         pace: float) -> AsyncIterator[str]:
     """NDJSON lines paced like the live stream (`pace` 2.0 plays twice as fast)."""
-    plan = await asyncio.to_thread(replay_plan, record, frame_every)
+    plan = await asyncio.to_thread(replay_plan, record, frame_every, frames_per_message)
     loop = asyncio.get_running_loop()
     start = loop.time()
     seq = 0
@@ -45,8 +45,7 @@ async def stream_replay(record: ShotRecord, match: MatchRecord, frame_every: int
         if delay > 0:
             await asyncio.sleep(delay)
         seq += 1
-        yield encode({"type": timed.payload["type"], "seq": seq,
-                      **{k: v for k, v in timed.payload.items() if k != "type"}}) + "\n"
+        yield message_text(timed.kind, seq, timed.body) + "\n"
     seq += 1
     payload = result_message(record, match)
     yield encode({"type": "shot_result", "seq": seq,

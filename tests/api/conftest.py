@@ -97,3 +97,14 @@ def roundtrip(ws: WebSocketTestSession, payload: dict | str) -> list[dict]:
 
 def errors_in(messages: list[dict]) -> list[dict]:
     return [m for m in messages if m["type"] == "error"]
+
+
+def flat_frames(stream: list[dict]) -> list[dict]:
+    """Every frame of a stream in tick order: each `frame` message and the frames it
+    carries early in `ahead` (with the message's shot)."""
+    out = []
+    for m in stream:
+        if m["type"] == "frame":
+            out.append(m)
+            out.extend({"type": "frame", "shot": m["shot"], **a} for a in m.get("ahead", ()))
+    return out

@@ -7,6 +7,7 @@ one that blocks (or crawls) the way a peer that stopped reading does on a real n
 from __future__ import annotations
 
 import asyncio
+import threading
 
 import pytest
 from starlette.websockets import WebSocketDisconnect
@@ -53,22 +54,29 @@ def test_spectator_that_never_reads_does_not_slow_the_players(settings):
 
 
 def test_slow_spectator_has_stale_frames_skipped_but_keeps_what_matters(settings):
-    with make_client(settings, send_queue=100, send_timeout=5.0) as client:
+    # The spectator takes nothing until the players have seen the whole shot: its outbox
+    # (100) overflows with hundreds of frames (one every 2 ticks), and the events (a few
+    # dozen) must all survive.
+    with make_client(settings, send_queue=100, send_timeout=30.0, pace=2.0, frame_every=2,
+                     frames_per_message=1) as client:
         room_id, ta, _ = seated_room(client)
         with connect(client, room_id, ta) as a, connect(client, room_id) as s:
             greet(a)
             greet(s)
             live, slow = spectator_connection(client, room_id)
             fast_send = slow.send_text
+            released = threading.Event()
 
-            async def crawl(text: str) -> None:  # far slower than the stream, however late
-                await asyncio.sleep(0.04)
+            async def held(text: str) -> None:
+                while not released.is_set():
+                    await asyncio.sleep(0.01)
                 await fast_send(text)
 
-            slow.send_text = crawl
+            slow.send_text = held
             receive_until(a, "presence")
             a.send_json(BREAK)
             player = receive_until(a, "state")
+            released.set()
             watcher = receive_until(s, "state")
     assert slow.dropped > 0
     player_frames = [m for m in player if m["type"] == "frame"]

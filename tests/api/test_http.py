@@ -141,3 +141,24 @@ def test_web_client_is_served_at_root_and_room_links(client):
     link = client.get(f"/r/{room_id}")
     assert link.status_code == 200 and link.text == index.text
     assert link.headers["content-type"].startswith("text/html")
+
+
+def test_stats_report_rooms_connections_and_frame_lateness(settings):
+    from .conftest import BREAK, connect, greet, make_client, receive_until, seated_room
+
+    with make_client(settings, pace=4.0) as client:
+        empty = client.get("/api/stats").json()
+        assert empty["rooms"] == 0 and empty["stream"]["frames"] == 0
+        assert empty["stream"]["late_p99_ms"] is None
+        room_id, ta, _ = seated_room(client)
+        with connect(client, room_id, ta) as a:
+            greet(a)
+            a.send_json(BREAK)
+            frames = [m for m in receive_until(a, "state") if m["type"] == "frame"]
+            stats = client.get("/api/stats", params={"window": 60}).json()
+        assert stats["rooms"] == 1 and stats["connections"] == 1
+        stream = stats["stream"]
+        assert stream["frames"] == stream["frames_sent"] == len(frames)
+        assert 0 <= stream["late_p50_ms"] <= stream["late_p99_ms"] <= stream["late_max_ms"]
+        assert client.get("/api/stats", params={"window": 0}).status_code == 422
+        assert client.get("/api/stats", params={"window": "nan"}).status_code == 422

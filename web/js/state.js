@@ -111,6 +111,14 @@ export function reduce(state, msg, now = 0) {
       const balls = decodeBalls(msg.b);
       effects.push({ kind: 'frame', t: msg.tick / s.tickHz, balls, last: !!msg.last });
       if (msg.last) s.balls = balls;
+      // The next frames, sent early in the same message (fewer messages for the server):
+      // played at their own ticks like any other frame.
+      for (const early of msg.ahead ?? []) {
+        if (early.tick <= s.lastFrameTick) continue;
+        s.lastFrameTick = early.tick;
+        effects.push({ kind: 'frame', t: early.tick / s.tickHz, balls: decodeBalls(early.b),
+          last: false });
+      }
       break;
     }
     case 'event':

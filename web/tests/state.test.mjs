@@ -70,6 +70,22 @@ test('frames of a new shot start playback, in seconds from the tick', () => {
   assert.equal(s.clock, null);
 });
 
+test('frames sent ahead in a message are played at their own ticks, once', () => {
+  const { s, effects } = run([
+    [{ type: 'welcome', seat: 1, role: 'player', seq: 1, tick_hz: 120 }],
+    [stateMsg(1)],
+    [{ type: 'frame', seq: 2, shot: 7, tick: 6, b: [[0, 700, 635, 2]],
+      ahead: [{ tick: 12, b: [[0, 760, 635, 5]] }] }],
+    [{ type: 'frame', seq: 3, shot: 7, tick: 12, b: [[0, 760, 635, 5]] }],
+    [{ type: 'frame', seq: 4, shot: 7, tick: 18, b: [[0, 800, 635, 6]], last: true }],
+  ]);
+  const frames = effects.filter((e) => e.kind === 'frame');
+  assert.deepEqual(frames.map((f) => f.t), [0.05, 0.1, 0.15]);
+  assert.equal(frames[1].balls[0].x, 0.76);
+  assert.deepEqual(frames.map((f) => f.last), [false, false, true]);
+  assert.equal(s.balls[0].x, 0.8);
+});
+
 test('a stale or repeated frame is dropped', () => {
   const { effects } = run([
     [stateMsg(1)],

@@ -44,7 +44,7 @@ def _record(events, n_ev, time, kind, a, b, speed, target):
     return n_ev + 1
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def run_tick(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width,
              p, dt, t0, events, n_ev):
     """Advance the table by one tick of length dt starting at time t0.
@@ -163,7 +163,7 @@ def cels_of(phase, st, out, p):
         out[i] = int(math.floor((turns - math.floor(turns)) * n_cels)) % n_cels
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)  # the server runs shots in threads beside its loop
 def run_ticks(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width,
               p, dt, first_tick, max_ticks, events, n_ev, frame_pos, frame_cels, frame_on):
     """Run ticks until every ball is at rest, `max_ticks` have run, or the event buffer is

@@ -1,0 +1,51 @@
+"""How late the rooms send their frames: the server's own view of stream health.
+
+Each room records, for every frame message it sends, how far behind the shot's schedule
+the send happened (loop time); `GET /api/stats` reports percentiles over a recent window.
+Measured on the server, it separates a slow server from a slow network or client.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import deque
+from dataclasses import dataclass, field
+
+
+def percentile(ordered: list[float], p: float) -> float:
+    """Nearest-rank percentile of a sorted list (NaN when empty)."""
+    if not ordered:
+        return math.nan
+    return ordered[min(len(ordered) - 1, int(round(p / 100 * (len(ordered) - 1))))]
+
+
+@dataclass
+class StreamMetrics:
+    """Recent frame send lateness (bounded) and running totals."""
+
+    capacity: int = 100_000
+    frames_sent: int = 0
+    frames_skipped: int = 0  # stale when their turn came: a newer frame was already due
+    _samples: deque[tuple[float, float]] = field(default_factory=deque)  # (time, late)
+
+    def sent(self, now: float, late: float) -> None:
+        self.frames_sent += 1
+        if len(self._samples) >= self.capacity:
+            self._samples.popleft()
+        self._samples.append((now, max(0.0, late)))
+
+    def skipped(self) -> None:
+        self.frames_skipped += 1
+
+    def summary(self, now: float, window: float) -> dict:
+        """Lateness of the frames sent in the last `window` seconds, in milliseconds."""
+        late = sorted(v for t, v in self._samples if now - t <= window)
+        return {"window": window, "frames": len(late),
+                "late_p50_ms": _ms(percentile(late, 50)),
+                "late_p99_ms": _ms(percentile(late, 99)),
+                "late_max_ms": _ms(late[-1] if late else math.nan),
+                "frames_sent": self.frames_sent, "frames_skipped": self.frames_skipped}
+
+
+def _ms(seconds: float) -> float | None:
+    return None if math.isnan(seconds) else round(seconds * 1000.0, 3)

@@ -1,0 +1,62 @@
+"""The compiled frame encoder writes exactly what `json.dumps` would."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.extra import numpy as hnp
+
+from server.engine import Shot, Table, rack, simulate
+from server.rooms.frame_codec import encode_frames
+from server.rooms.stream import frame_rows, plan_shot
+
+
+def reference(shot_id, ticks, ids, mm, cels, on_table, last) -> list[str]:
+    out = []
+    for j, tick in enumerate(ticks.tolist()):
+        rows = [[int(i), int(mm[j, b, 0]), int(mm[j, b, 1]), int(cels[j, b])]
+                for b, i in enumerate(ids.tolist()) if on_table[j, b]]
+        payload = {"shot": shot_id, "tick": tick, "b": rows}
+        if j == last:
+            payload["last"] = True
+        out.append(json.dumps(payload, separators=(",", ":")))
+    return out
+
+
+@st.composite
+def frame_arrays(draw):
+    count = draw(st.integers(1, 6))
+    n = draw(st.integers(0, 16))
+    ints = st.integers(-(2**63), 2**63 - 1)
+    ticks = draw(hnp.arrays(np.int64, count, elements=st.integers(0, 10**6)))
+    ids = draw(hnp.arrays(np.int64, n, elements=st.integers(0, 15)))
+    mm = draw(hnp.arrays(np.int64, (count, n, 2), elements=ints))
+    cels = draw(hnp.arrays(np.int64, (count, n), elements=st.integers(0, 63)))
+    on = draw(hnp.arrays(np.bool_, (count, n)))
+    last = draw(st.integers(-1, count - 1))
+    return draw(st.integers(0, 2**40)), ticks, ids, mm, cels, on, last
+
+
+@settings(max_examples=200, deadline=None)
+@given(frame_arrays())
+def test_same_text_as_json_dumps(arrays):
+    assert encode_frames(*arrays) == reference(*arrays)
+
+
+def test_a_real_shot_streams_the_rows_of_its_ticks():
+    table = Table.pool("9ft")
+    result = simulate(table, rack("eight_ball", table, seed=4), Shot(0.02, 8.0))
+    plan = plan_shot(result, 7, 6)
+    frames = [m for m in plan if m.kind == "frame"]
+    assert [m.tick for m in frames][-1] == len(result.frames)
+    for m in frames:
+        frame = result.frames[m.tick - 1]
+        expected = frame_rows(result.ids, frame.positions, frame.cels, frame.on_table)
+        payload = m.payload
+        assert payload["b"] == [list(row) for row in expected]
+        assert payload["shot"] == 7 and payload["tick"] == m.tick
+        assert payload.get("last", False) is (m is frames[-1]) is (not m.droppable)
+        assert plan.frames.rows(m.frame) == expected
