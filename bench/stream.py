@@ -13,20 +13,16 @@ from __future__ import annotations
 import argparse
 import asyncio
 import json
-import socket
 import statistics
-import threading
-import time
 from dataclasses import replace
 
 import httpx
-import uvicorn
 import websockets
 from websockets.asyncio.client import ClientConnection
 
-from server.__main__ import uvicorn_config
 from server.app import create_app
 from server.config import Settings
+from server.embedded import bound_socket, serving
 
 
 class CountingConnection(ClientConnection):
@@ -69,19 +65,6 @@ async def one_break(address: str, compression: str | None) -> tuple[float, int, 
         return (s.received - start) / (ticks / 120), frames, ticks
 
 
-def serve(settings: Settings) -> tuple[uvicorn.Server, threading.Thread, str]:
-    sock = socket.socket()
-    sock.bind(("127.0.0.1", 0))
-    host, port = sock.getsockname()
-    server = uvicorn.Server(uvicorn_config(create_app(settings), host, port, settings,
-                                           log_level="warning"))
-    thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
-    thread.start()
-    while not server.started:
-        time.sleep(0.02)
-    return server, thread, f"{host}:{port}"
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=3)
@@ -92,17 +75,13 @@ def main() -> None:
         # pace 2: fast enough, and never so fast that the room skips stale frames
         settings = replace(Settings(), frame_every=every, frames_per_message=per_message,
                            pace=2.0, ws_deflate=True)
-        server, thread, address = serve(settings)
-        try:
+        with serving(create_app(settings), settings, bound_socket()) as address:
             for compression in (None, "deflate"):
                 runs = [asyncio.run(one_break(address, compression)) for _ in range(args.runs)]
                 rate = statistics.median(r[0] for r in runs)
                 frames = statistics.median(r[1] for r in runs)
                 print(f"{120 // every:>8} {per_message:>7} {compression or 'none':>12} "
                       f"{rate:>19.0f} {frames:>7.0f}")
-        finally:
-            server.should_exit = True
-            thread.join(10)
 
 
 if __name__ == "__main__":

@@ -58,13 +58,22 @@ def strike(balls: BallSet, shot: Shot, params: PhysicsParams = DEFAULT_PARAMS,
     return Event(time, EventKind.STRIKE.value, (CUE,), float(shot.speed))
 
 
+_KIND_NAMES = tuple(kind.value for kind in EVENT_CODES)
+
+
 def _events_from(rows: np.ndarray, ids: np.ndarray) -> list[Event]:
-    out = []
-    for time, code, a, b, speed, target in rows.tolist():
-        kind = EVENT_CODES[int(code)]
-        involved = (int(ids[int(a)]),) if b < 0 else (int(ids[int(a)]), int(ids[int(b)]))
-        out.append(Event(time, kind.value, involved, speed, int(target)))
-    return out
+    """`Event`s from the kernel's event rows. A sustained contact can log thousands of
+    events in one shot, so this loop stays lean: it holds the GIL the server's loop needs."""
+    names, id_of = _KIND_NAMES, ids.tolist()
+    codes = rows[:, 1].astype(np.int64).tolist()
+    first = rows[:, 2].astype(np.int64).tolist()
+    second = rows[:, 3].astype(np.int64).tolist()
+    targets = rows[:, 5].astype(np.int64).tolist()
+    return [Event(time, names[code], (id_of[a],) if b < 0 else (id_of[a], id_of[b]), speed,
+                  target)
+            for time, speed, code, a, b, target in zip(
+                rows[:, 0].tolist(), rows[:, 4].tolist(), codes, first, second, targets,
+                strict=True)]
 
 
 def step(table: Table, balls: BallSet, tick: float = DEFAULT_TICK, time: float = 0.0,

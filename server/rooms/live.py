@@ -84,8 +84,6 @@ class LiveRoom:
         self.seq = 0
         self.last_activity = time.monotonic()
         self.ever_joined = False
-        self.sim_seconds: list[float] = []  # wall time of each simulate(), for measuring
-        self.frames_skipped = 0  # frames not sent because the loop was late (overload)
         self.metrics = StreamMetrics(capacity=1)  # the registry shares one for all rooms
         self._clock: _Timer | None = None
         self._grace: dict[int, _Timer] = {}
@@ -314,11 +312,9 @@ class LiveRoom:
         assert room.match is not None
         table = room.match.game.table
         try:
-            started = time.perf_counter()
             result, plan = await asyncio.to_thread(
                 prepare_shot, table, before, shot, shot_id, self.settings.frame_every,
                 self.settings.frames_per_message)
-            self.sim_seconds.append(time.perf_counter() - started)
             outcome = room.apply_shot(result)
         except Exception:
             log.exception("shot %s in room %s failed", shot_id, room.room_id)
@@ -341,8 +337,7 @@ class LiveRoom:
                 room.show(timed, plan.frames)
                 now = loop.time()
                 if timed.droppable and start + stale_at / pace <= now:
-                    self.frames_skipped += 1  # a newer frame is already due: send that one
-                    self.metrics.skipped()
+                    self.metrics.skipped()  # a newer frame is already due: send that one
                     continue
                 if timed.frame is not None:
                     self.metrics.sent(now, now - start - timed.at / pace)

@@ -8,44 +8,23 @@ from __future__ import annotations
 
 import asyncio
 import json
-import socket
-import threading
 import time
-from collections.abc import Iterator
-from contextlib import contextmanager
+from contextlib import AbstractContextManager
 from dataclasses import replace
 
 import httpx
 import pytest
-import uvicorn
 import websockets
 from websockets.exceptions import ConnectionClosed, InvalidStatus
 
-from server.__main__ import uvicorn_config
 from server.app import create_app
+from server.embedded import bound_socket, serving
 
 pytestmark = pytest.mark.timeout(120)
 
 
-@contextmanager
-def live_server(settings) -> Iterator[str]:
-    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
-    sock.bind(("127.0.0.1", 0))
-    host, port = sock.getsockname()
-    config = uvicorn_config(create_app(settings), host, port, settings, log_level="warning")
-    server = uvicorn.Server(config)
-    thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
-    thread.start()
-    deadline = time.monotonic() + 30
-    while not server.started:
-        assert thread.is_alive() and time.monotonic() < deadline, "server did not start"
-        time.sleep(0.02)
-    try:
-        yield f"{host}:{port}"
-    finally:
-        server.should_exit = True
-        thread.join(15)
-        sock.close()
+def live_server(settings) -> AbstractContextManager[str]:
+    return serving(create_app(settings), settings, bound_socket())
 
 
 async def recv(ws) -> dict:

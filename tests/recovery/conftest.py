@@ -6,19 +6,15 @@ from __future__ import annotations
 import asyncio
 import json
 import socket
-import threading
-import time
-from collections.abc import Iterator
-from contextlib import contextmanager
+from contextlib import AbstractContextManager
 from dataclasses import replace
 from pathlib import Path
 
 import pytest
-import uvicorn
 
-from server.__main__ import uvicorn_config
 from server.app import create_app
 from server.config import Settings
+from server.embedded import bound_socket, serving
 from server.store import Database
 
 FAST = Settings(pace=20.0, grace=60.0, min_shot_clock=0.1, send_timeout=2.0)
@@ -47,28 +43,9 @@ def free_port() -> int:
         return sock.getsockname()[1]
 
 
-@contextmanager
-def live_server(settings: Settings, db_path: Path, port: int) -> Iterator[str]:
+def live_server(settings: Settings, db_path: Path, port: int) -> AbstractContextManager[str]:
     """A real uvicorn on 127.0.0.1:`port` over the database at `db_path`."""
-    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
-    sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
-    sock.bind(("127.0.0.1", port))
-    config = uvicorn_config(app_on(settings, db_path), "127.0.0.1", port, settings,
-                            log_level="warning")
-    server = uvicorn.Server(config)
-    thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
-    thread.start()
-    deadline = time.monotonic() + 30
-    while not server.started:
-        assert thread.is_alive() and time.monotonic() < deadline, "server did not start"
-        time.sleep(0.02)
-    try:
-        yield f"127.0.0.1:{port}"
-    finally:
-        server.should_exit = True
-        thread.join(20)
-        sock.close()
-        assert not thread.is_alive(), "server did not stop"
+    return serving(app_on(settings, db_path), settings, bound_socket(port))
 
 
 async def recv(ws, timeout: float = 20) -> dict:
