@@ -293,7 +293,7 @@ def finish_shot(bots: RoomBots, shot: int, stats: Stats) -> None:
 # ---- one run ---------------------------------------------------------------------------------
 
 async def run(rooms: int, seconds: float, compression: str | None, think: float,
-              seed: int) -> dict:
+              seed: int, server_log: Path | None = None) -> dict:
     port = free_port()
     base = f"http://127.0.0.1:{port}"
     with tempfile.TemporaryDirectory() as tmp:
@@ -311,6 +311,9 @@ async def run(rooms: int, seconds: float, compression: str | None, think: float,
             except subprocess.TimeoutExpired:
                 proc.kill()
                 proc.wait()
+            if server_log is not None:
+                with server_log.open("a") as out:
+                    out.write(log.read_text())
 
 
 async def drive(proc: subprocess.Popen, base: str, rooms: int, seconds: float,
@@ -396,6 +399,8 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--runs", type=int, default=1, help="report the median of R runs")
     parser.add_argument("--compression", choices=("deflate", "none"), default="deflate",
                         help="offer permessage-deflate like browsers do (default)")
+    parser.add_argument("--server-log", type=Path, default=None,
+                        help="append the server's log (warnings: slow shots...) to this file")
     parser.add_argument("--think", type=float, default=0.3,
                         help="seconds a bot waits before acting (mean)")
     args = parser.parse_args(argv)
@@ -404,7 +409,8 @@ def main(argv: list[str] | None = None) -> None:
     compression = None if args.compression == "none" else "deflate"
     results = []
     for i in range(args.runs):
-        result = asyncio.run(run(args.rooms, args.seconds, compression, args.think, seed=i))
+        result = asyncio.run(run(args.rooms, args.seconds, compression, args.think, seed=i,
+                                 server_log=args.server_log))
         results.append(result)
         print(f"run {i + 1}: " + ", ".join(f"{name} {fmt.format(result[key])}"
                                            for name, key, fmt in COLUMNS),

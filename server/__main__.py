@@ -10,7 +10,7 @@ import uvicorn
 
 from server.app import create_app
 from server.config import Settings
-from server.rooms.live import warm_up
+from server.rooms.prepare import warm_up
 
 
 def uvicorn_config(app: object, host: str, port: int, settings: Settings,

@@ -16,7 +16,6 @@ from server.api.matches import router as matches_router
 from server.api.ws import router as ws_router
 from server.config import Settings
 from server.rooms import RoomRegistry
-from server.rooms.live import warm_up
 from server.rooms.observer import RoomObserver
 from server.store import Database, StoreObserver, default_db_path
 from server.store.restore import restore_rooms
@@ -39,7 +38,7 @@ def create_app(settings: Settings | None = None,
 
     @contextlib.asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
-        await asyncio.to_thread(warm_up, settings.frame_every)
+        await registry.runner.start()
         store.open()
         if isinstance(observer, StoreObserver):
             observer.start()
@@ -58,6 +57,7 @@ def create_app(settings: Settings | None = None,
             registry.close_all(CLOSE_RESTART, "server_restart")
             await asyncio.sleep(0)  # let the senders see the close
             await asyncio.to_thread(store.close)  # every queued write is on disk
+            registry.runner.close()
 
     app = FastAPI(title="Pool online", version="1.0",
                   description="Rooms, seats and the authoritative game stream. "

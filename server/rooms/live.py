@@ -20,7 +20,7 @@ from server.api.messages import (
     Shoot,
 )
 from server.config import Settings
-from server.engine import BallSet, Shot, ShotResult, Table, rack, simulate
+from server.engine import BallSet, Shot
 from server.rules import Outcome
 
 from .connection import CLOSE_REPLACED, Connection
@@ -28,28 +28,14 @@ from .errors import ActionError
 from .metrics import StreamMetrics
 from .observer import NullObserver, RoomObserver
 from .room import Room
-from .stream import ShotPlan, Timed, encode, message_text, plan_shot
+from .shot_runner import ShotRunner
+from .stream import Timed, encode, message_text
 
 log = logging.getLogger(__name__)
+SLOW_SHOT = 0.25  # s from strike to stream start worth a warning in the log
 
 
-__all__ = ["LiveRoom", "encode", "prepare_shot"]  # `encode` for the API layer
-
-
-def prepare_shot(table: Table, before: BallSet, shot: Shot, shot_id: int,
-                 frame_every: int, frames_per_message: int) -> tuple[ShotResult, ShotPlan]:
-    """Simulate and plan a shot and encode its messages (runs in a worker thread)."""
-    result = simulate(table, before, shot)
-    return result, plan_shot(result, shot_id, frame_every, frames_per_message)
-
-
-def warm_up(frame_every: int = 6) -> None:
-    """Load the compiled engine and frame encoder (numba's cache; compiled on a fresh
-    clone) before the first player shoots: the first call takes ~0.4 s, and holds the GIL
-    the event loop needs, so doing it at a shot would stall every room's stream."""
-    table = Table.pool("9ft")
-    balls = rack("eight_ball", table, seed=0)
-    prepare_shot(table, balls, Shot(0.0, 9.0), 0, frame_every, 2)
+__all__ = ["LiveRoom", "encode"]  # `encode` for the API layer
 
 
 def superseded_times(plan: list[Timed]) -> list[float]:
@@ -85,6 +71,7 @@ class LiveRoom:
         self.last_activity = time.monotonic()
         self.ever_joined = False
         self.metrics = StreamMetrics(capacity=1)  # the registry shares one for all rooms
+        self.runner = ShotRunner(0, settings.frame_every, settings.frames_per_message)
         self._clock: _Timer | None = None
         self._grace: dict[int, _Timer] = {}
         self._stream: asyncio.Task | None = None
@@ -312,10 +299,16 @@ class LiveRoom:
         assert room.match is not None
         table = room.match.game.table
         try:
-            result, plan = await asyncio.to_thread(
-                prepare_shot, table, before, shot, shot_id, self.settings.frame_every,
-                self.settings.frames_per_message)
+            started = time.perf_counter()
+            result, plan = await self.runner.prepare(table, before, shot, shot_id)
+            prepared = time.perf_counter()
             outcome = room.apply_shot(result)
+            judged = time.perf_counter()
+            if judged - started > SLOW_SHOT:
+                log.warning("room %s shot %s: %.0f ms to simulate and plan, %.0f ms to judge "
+                            "(%d ticks, %d events, %s)", room.room_id, shot_id,
+                            1000 * (prepared - started), 1000 * (judged - prepared),
+                            len(result.frames), len(result.events), shot)
         except Exception:
             log.exception("shot %s in room %s failed", shot_id, room.room_id)
             room.abort_shot()

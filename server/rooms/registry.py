@@ -14,6 +14,7 @@ from .live import LiveRoom
 from .metrics import StreamMetrics
 from .observer import RoomObserver
 from .room import Room
+from .shot_runner import ShotRunner
 from .tokens import new_room_id
 
 log = logging.getLogger(__name__)
@@ -28,6 +29,8 @@ class RoomRegistry:
         self.observer = observer
         self.rooms: dict[str, LiveRoom] = {}
         self.metrics = StreamMetrics()
+        self.runner = ShotRunner(settings.shot_workers, settings.frame_every,
+                                 settings.frames_per_message)
 
     def create(self, game: str, race_to: int = 1, shot_clock: float | None = None) -> LiveRoom:
         if len(self.rooms) >= self.settings.max_rooms:
@@ -38,7 +41,7 @@ class RoomRegistry:
         clock = self.settings.shot_clock if shot_clock is None else shot_clock
         room = Room(room_id, game, race_to=race_to, shot_clock=clock, created_at=time.time())
         live = LiveRoom(room, self.settings, self.observer)
-        live.metrics = self.metrics
+        self._share(live)
         self.rooms[room_id] = live
         if self.observer is not None:
             self.observer.room_changed(room)
@@ -46,8 +49,12 @@ class RoomRegistry:
 
     def add(self, live: LiveRoom) -> None:
         """Put back a restored room (storage, issue 7)."""
-        live.metrics = self.metrics
+        self._share(live)
         self.rooms[live.room.room_id] = live
+
+    def _share(self, live: LiveRoom) -> None:
+        live.metrics = self.metrics
+        live.runner = self.runner
 
     def get(self, room_id: str) -> LiveRoom | None:
         return self.rooms.get(room_id)

@@ -14,7 +14,7 @@ from starlette.testclient import WebSocketTestSession
 from server.app import create_app
 from server.config import Settings
 
-FAST = Settings(pace=20.0, grace=60.0, min_shot_clock=0.1, send_timeout=0.5)
+FAST = Settings(pace=20.0, grace=60.0, min_shot_clock=0.1, send_timeout=0.5, shot_workers=0)
 BREAK = {"type": "shoot", "angle": 0.0, "speed": 9.0, "tip": [0.0, 0.0]}
 
 

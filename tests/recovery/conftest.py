@@ -17,7 +17,8 @@ from server.config import Settings
 from server.embedded import bound_socket, serving
 from server.store import Database
 
-FAST = Settings(pace=20.0, grace=60.0, min_shot_clock=0.1, send_timeout=2.0)
+FAST = Settings(pace=20.0, grace=60.0, min_shot_clock=0.1, send_timeout=2.0,
+                shot_workers=0)
 
 
 @pytest.fixture
