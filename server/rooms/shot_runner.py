@@ -57,6 +57,7 @@ class ShotRunner:
         return await asyncio.to_thread(prepare_shot, *args)
 
     def close(self) -> None:
+        """Stop the workers and wait for them (a worker left running outlives the server)."""
         if self._pool is not None:
-            self._pool.shutdown(wait=False, cancel_futures=True)
+            self._pool.shutdown(wait=True, cancel_futures=True)
             self._pool = None
