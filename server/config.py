@@ -28,7 +28,7 @@ class Settings:
 
     tick_hz: int = 120  # the engine's tick (DEFAULT_TICK = 1/120)
     frame_every: int = 6  # send every 6th tick: 20 frames/s (see docs/protocol.md)
-    frames_per_message: int = 2  # ... in 10 `frame` messages/s, each one frame ahead
+    frames_per_message: int = 4  # ... in 5 `frame` messages/s, each with 3 frames ahead
     # Processes that simulate shots; 0 (default): threads of this process. On this 2-core
     # machine one worker process was slower under load (docs/performance.md).
     shot_workers: int = 0

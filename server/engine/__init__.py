@@ -8,12 +8,12 @@ from .params import DEFAULT_PARAMS, PhysicsParams
 from .rack import rack, rack_slots
 from .results import Event, EventKind, Frame, FrameSequence, ShotResult
 from .shot import MAX_SPEED, MAX_TIP, Shot
-from .simulate import DEFAULT_TICK, run_to_rest, simulate, step, strike
+from .simulate import DEFAULT_TICK, ShotInMotion, run_to_rest, simulate, step, strike
 from .table import BALL_MASS, BALL_RADIUS, Cushion, Pocket, Table
 
 __all__ = [
     "BALL_MASS", "BALL_RADIUS", "CUE", "DEFAULT_PARAMS", "DEFAULT_TICK", "MAX_SPEED", "MAX_TIP",
     "BallSet", "Cushion", "Event", "EventKind", "Frame", "FrameSequence", "MotionState",
-    "PhysicsParams", "Pocket", "Shot", "ShotResult", "Table", "rack", "rack_slots",
+    "PhysicsParams", "Pocket", "Shot", "ShotInMotion", "ShotResult", "Table", "rack", "rack_slots",
     "run_to_rest", "simulate", "step", "strike",
 ]

@@ -10,14 +10,13 @@ import numpy as np
 from .balls import CUE, BallSet, MotionState
 from .params import DEFAULT_PARAMS, PhysicsParams
 from .physics.motion import classify
-from .physics.tick import empty_events, run_tick, run_ticks
+from .physics.tick import empty_events, run_tick, run_to_rest_kernel
 from .results import EVENT_CODES, Event, EventKind, FrameSequence, ShotResult
 from .shot import Shot
 from .table import Table
 
 DEFAULT_TICK = 1.0 / 120.0
 MAX_SHOT_SECONDS = 300.0  # no real shot comes close; a guard, not a rule
-_CHUNK_TICKS = 2048
 _EVENT_CAPACITY = 16384
 
 
@@ -88,6 +87,43 @@ def step(table: Table, balls: BallSet, tick: float = DEFAULT_TICK, time: float =
     return _events_from(events[:n_ev], balls.ids)
 
 
+class ShotInMotion:
+    """A shot in three parts, so a server can run the long middle one in a thread without
+    holding the GIL its event loop needs: the strike (here), `run()` (the whole tick loop,
+    one compiled call that releases the GIL) and `result()` (Python objects again).
+
+    `simulate` is the three in a row; splitting them changes nothing in the result."""
+
+    def __init__(self, table: Table, balls: BallSet, shot: Shot, tick: float = DEFAULT_TICK,
+                 params: PhysicsParams = DEFAULT_PARAMS) -> None:
+        self.tick = float(tick)
+        self.state = balls.copy()
+        self._events = [strike(self.state, shot, params)]
+        self._geometry = _geometry(table)
+        self._params = params.array()
+        self._raw: tuple | None = None
+
+    def run(self) -> None:
+        """Run every tick until the balls are at rest (the guard: MAX_SHOT_SECONDS)."""
+        s, g = self.state, self._geometry
+        self._raw = run_to_rest_kernel(
+            s.positions, s.velocities, s.spins, s.states, s.phases, s.pockets, g.cushions,
+            g.jaws, g.pockets, g.centers, g.length, g.width, self._params, self.tick,
+            int(MAX_SHOT_SECONDS / self.tick), _EVENT_CAPACITY)
+
+    def result(self) -> ShotResult:
+        if self._raw is None:
+            raise RuntimeError("run() the shot first")
+        positions, cels, on_table, rows, stalls = self._raw
+        state = self.state
+        events = self._events + _events_from(rows, state.ids)
+        spinning = state.states == MotionState.SPINNING
+        state.spins[spinning] = 0.0
+        state.states[spinning] = MotionState.STATIONARY
+        frames = FrameSequence(self.tick, positions, cels, on_table)
+        return ShotResult(state.ids.copy(), frames, events, state, int(stalls))
+
+
 def simulate(table: Table, balls: BallSet, shot: Shot, tick: float = DEFAULT_TICK,
              params: PhysicsParams = DEFAULT_PARAMS) -> ShotResult:
     """Strike the cue ball and run ticks until every ball is at rest or pocketed.
@@ -95,55 +131,20 @@ def simulate(table: Table, balls: BallSet, shot: Shot, tick: float = DEFAULT_TIC
     `balls` is not modified. Residual spin about the vertical axis of a ball that has
     stopped translating is dropped at the end (it cannot move the ball any more).
     """
-    state = balls.copy()
-    events = [strike(state, shot, params)]
-    frames, stalls = _run_to_rest(table, state, tick, params, events)
-    spinning = state.states == MotionState.SPINNING
-    state.spins[spinning] = 0.0
-    state.states[spinning] = MotionState.STATIONARY
-    return ShotResult(state.ids.copy(), frames, events, state, stalls)
+    motion = ShotInMotion(table, balls, shot, tick, params)
+    motion.run()
+    return motion.result()
 
 
 def run_to_rest(table: Table, state: BallSet, tick: float = DEFAULT_TICK,
                 params: PhysicsParams = DEFAULT_PARAMS,
                 events: list[Event] | None = None) -> FrameSequence:
     """Advance `state` in place until no ball moves; appends events to `events`."""
-    return _run_to_rest(table, state, tick, params, [] if events is None else events)[0]
-
-
-def _run_to_rest(table: Table, state: BallSet, tick: float, params: PhysicsParams,
-                 events: list[Event]) -> tuple[FrameSequence, int]:
     geo = _geometry(table)
-    p = params.array()
-    n = len(state)
-    max_ticks = int(MAX_SHOT_SECONDS / tick)
-    chunks_pos, chunks_cels, chunks_on = [], [], []
-    ticks_done = 0
-    stalls = 0
-    while ticks_done < max_ticks and state.moving.any():
-        size = min(_CHUNK_TICKS, max_ticks - ticks_done)
-        frame_pos = np.empty((size, n, 2))
-        frame_cels = np.empty((size, n), dtype=np.int64)
-        frame_on = np.empty((size, n), dtype=np.bool_)
-        ev = empty_events(_EVENT_CAPACITY)
-        ran, n_ev, chunk_stalls = run_ticks(
-            state.positions, state.velocities, state.spins, state.states, state.phases,
-            state.pockets, geo.cushions, geo.jaws, geo.pockets, geo.centers, geo.length,
-            geo.width, p, float(tick), ticks_done, size, ev, 0, frame_pos, frame_cels,
-            frame_on)
-        chunks_pos.append(frame_pos[:ran])
-        chunks_cels.append(frame_cels[:ran])
-        chunks_on.append(frame_on[:ran])
-        events.extend(_events_from(ev[:n_ev], state.ids))
-        ticks_done += ran
-        stalls += chunk_stalls
-    frames = FrameSequence(tick, _stack(chunks_pos, (0, n, 2), np.float64),
-                           _stack(chunks_cels, (0, n), np.int64),
-                           _stack(chunks_on, (0, n), np.bool_))
-    return frames, stalls
-
-
-def _stack(chunks: list[np.ndarray], empty_shape: tuple[int, ...], dtype) -> np.ndarray:
-    if not chunks:
-        return np.empty(empty_shape, dtype=dtype)
-    return chunks[0] if len(chunks) == 1 else np.concatenate(chunks)
+    positions, cels, on_table, rows, _ = run_to_rest_kernel(
+        state.positions, state.velocities, state.spins, state.states, state.phases,
+        state.pockets, geo.cushions, geo.jaws, geo.pockets, geo.centers, geo.length,
+        geo.width, params.array(), float(tick), int(MAX_SHOT_SECONDS / tick), _EVENT_CAPACITY)
+    if events is not None:
+        events.extend(_events_from(rows, state.ids))
+    return FrameSequence(float(tick), positions, cels, on_table)

@@ -292,14 +292,14 @@ class LiveRoom:
         self._cancel_clock()
         self.observer.shot_started(self.room, seat, shot, shot_id)
         self._stream = asyncio.get_running_loop().create_task(
-            self._play(seat, shot, shot_id, before))
+            self._play(seat, shot, shot_id, before, time.perf_counter()))
 
-    async def _play(self, seat: int, shot: Shot, shot_id: int, before: BallSet) -> None:
+    async def _play(self, seat: int, shot: Shot, shot_id: int, before: BallSet,
+                    started: float) -> None:
         room = self.room
         assert room.match is not None
         table = room.match.game.table
         try:
-            started = time.perf_counter()
             result, plan = await self.runner.prepare(table, before, shot, shot_id)
             prepared = time.perf_counter()
             outcome = room.apply_shot(result)
@@ -318,6 +318,7 @@ class LiveRoom:
         self.observer.shot_played(room, seat, shot, before, outcome)
         loop = asyncio.get_running_loop()
         start = loop.time()
+        self.metrics.shot_started(start, time.perf_counter() - started)
         pace = self.settings.pace
         superseded_at = superseded_times(plan.messages)
         try:

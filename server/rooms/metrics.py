@@ -1,8 +1,10 @@
 """How late the rooms send their frames: the server's own view of stream health.
 
 Each room records, for every frame message it sends, how far behind the shot's schedule
-the send happened (loop time); `GET /api/stats` reports percentiles over a recent window.
-Measured on the server, it separates a slow server from a slow network or client.
+the send happened (loop time), and for every shot how long it took from `shoot` to the
+start of its stream (simulating, planning, judging, and any wait for a thread);
+`GET /api/stats` reports percentiles over a recent window. Measured on the server, it
+separates a slow server from a slow network or client.
 """
 
 from __future__ import annotations
@@ -27,6 +29,7 @@ class StreamMetrics:
     frames_sent: int = 0
     frames_skipped: int = 0  # stale when their turn came: a newer frame was already due
     _samples: deque[tuple[float, float]] = field(default_factory=deque)  # (time, late)
+    _starts: deque[tuple[float, float]] = field(default_factory=deque)  # (time, seconds)
 
     def sent(self, now: float, late: float) -> None:
         self.frames_sent += 1
@@ -37,14 +40,23 @@ class StreamMetrics:
     def skipped(self) -> None:
         self.frames_skipped += 1
 
+    def shot_started(self, now: float, seconds: float) -> None:
+        """A shot's stream began `seconds` after the room took the `shoot`."""
+        if len(self._starts) >= self.capacity:
+            self._starts.popleft()
+        self._starts.append((now, seconds))
+
     def summary(self, now: float, window: float) -> dict:
         """Lateness of the frames sent in the last `window` seconds, in milliseconds."""
         late = sorted(v for t, v in self._samples if now - t <= window)
+        starts = sorted(v for t, v in self._starts if now - t <= window)
         return {"window": window, "frames": len(late),
                 "late_p50_ms": _ms(percentile(late, 50)),
                 "late_p99_ms": _ms(percentile(late, 99)),
                 "late_max_ms": _ms(late[-1] if late else math.nan),
-                "frames_sent": self.frames_sent, "frames_skipped": self.frames_skipped}
+                "frames_sent": self.frames_sent, "frames_skipped": self.frames_skipped,
+                "shots": len(starts), "start_p50_ms": _ms(percentile(starts, 50)),
+                "start_p99_ms": _ms(percentile(starts, 99))}
 
 
 def _ms(seconds: float) -> float | None:

@@ -1,12 +1,16 @@
-"""Where shots are simulated and planned: threads of this process, or worker processes.
+"""Where shots are simulated: in threads of this process, or in worker processes.
 
-A thread preparing a shot must win the GIL from the busy event loop dozens of times (numpy
-calls, the Python around the compiled engine), waiting out the switch interval each time:
-under load (100+ rooms) a 4 ms shot took 0.3-2 s to start. A worker process
-(`POOL_SHOT_WORKERS=1`) has its own interpreter and the loop only unpickles the result
-(~1 ms), but on this 2-core machine, shared with the benchmark's clients, one worker could
-not keep up with 100 shots a second (docs/performance.md), so threads stay the default.
-A worker process that dies falls back to threads.
+Threads (the default) run only the compiled tick loop (`ShotInMotion.run`, one call that
+releases the GIL); the Python before and after it (the strike, turning the kernel's arrays
+into events, planning the messages: ~1 ms) runs on the event loop. A thread that ran all of
+`prepare_shot` had to win the GIL back from the busy loop after every compiled or numpy
+call, and while it held it the loop waited in turn: under load (100+ rooms) a 4 ms shot took
+0.3-2 s to start and every room's stream stalled (docs/performance.md).
+
+A worker process (`POOL_SHOT_WORKERS=1`) has its own interpreter and the loop only
+unpickles the result (~1 ms), but on this 2-core machine, shared with the benchmark's
+clients, one worker could not keep up with 100 shots a second. A worker process that dies
+falls back to threads.
 """
 
 from __future__ import annotations
@@ -14,13 +18,13 @@ from __future__ import annotations
 import asyncio
 import logging
 import multiprocessing
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 
-from server.engine import BallSet, Shot, ShotResult, Table
+from server.engine import BallSet, Shot, ShotInMotion, ShotResult, Table
 
 from .prepare import prepare_shot, warm_up
-from .stream import ShotPlan
+from .stream import ShotPlan, plan_shot
 
 log = logging.getLogger(__name__)
 
@@ -31,6 +35,14 @@ class ShotRunner:
         self.frame_every = frame_every
         self.frames_per_message = frames_per_message
         self._pool: ProcessPoolExecutor | None = None
+        self._thread_pool: ThreadPoolExecutor | None = None
+
+    @property
+    def _threads(self) -> ThreadPoolExecutor:
+        # Two, so one long shot does not hold up the others; more would only wait for a core.
+        if self._thread_pool is None:
+            self._thread_pool = ThreadPoolExecutor(2, thread_name_prefix="shots")
+        return self._thread_pool
 
     async def start(self) -> None:
         """Start the worker processes and load the engine in them (then the first shot is
@@ -42,7 +54,7 @@ class ShotRunner:
             await asyncio.gather(*(loop.run_in_executor(self._pool, warm_up, self.frame_every)
                                    for _ in range(self.workers)))
         else:
-            await asyncio.to_thread(warm_up, self.frame_every)
+            await loop.run_in_executor(self._threads, warm_up, self.frame_every)
 
     async def prepare(self, table: Table, before: BallSet, shot: Shot,
                       shot_id: int) -> tuple[ShotResult, ShotPlan]:
@@ -54,10 +66,16 @@ class ShotRunner:
             except BrokenProcessPool:
                 log.error("the shot worker process died; simulating in threads from now on")
                 self._pool = None
-        return await asyncio.to_thread(prepare_shot, *args)
+        motion = ShotInMotion(table, before, shot)
+        await asyncio.get_running_loop().run_in_executor(self._threads, motion.run)
+        result = motion.result()
+        return result, plan_shot(result, shot_id, self.frame_every, self.frames_per_message)
 
     def close(self) -> None:
         """Stop the workers and wait for them (a worker left running outlives the server)."""
         if self._pool is not None:
             self._pool.shutdown(wait=True, cancel_futures=True)
             self._pool = None
+        if self._thread_pool is not None:
+            self._thread_pool.shutdown(wait=True, cancel_futures=True)
+            self._thread_pool = None

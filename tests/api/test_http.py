@@ -150,6 +150,7 @@ def test_stats_report_rooms_connections_and_frame_lateness(settings):
         empty = client.get("/api/stats").json()
         assert empty["rooms"] == 0 and empty["stream"]["frames"] == 0
         assert empty["stream"]["late_p99_ms"] is None
+        assert empty["stream"]["shots"] == 0 and empty["stream"]["start_p50_ms"] is None
         room_id, ta, _ = seated_room(client)
         with connect(client, room_id, ta) as a:
             greet(a)
@@ -160,5 +161,6 @@ def test_stats_report_rooms_connections_and_frame_lateness(settings):
         stream = stats["stream"]
         assert stream["frames"] == stream["frames_sent"] == len(frames)
         assert 0 <= stream["late_p50_ms"] <= stream["late_p99_ms"] <= stream["late_max_ms"]
+        assert stream["shots"] == 1 and 0 < stream["start_p50_ms"] == stream["start_p99_ms"]
         assert client.get("/api/stats", params={"window": 0}).status_code == 422
         assert client.get("/api/stats", params={"window": "nan"}).status_code == 422

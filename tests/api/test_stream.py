@@ -75,7 +75,7 @@ def _check_break_stream(stream: list[dict]) -> None:
     assert stream[0]["speed"] == pytest.approx(9.0)
 
     messages = [m for m in stream if m["type"] == "frame"]
-    assert all(len(m.get("ahead", ())) <= 1 for m in messages)  # 2 frames per message
+    assert all(len(m.get("ahead", ())) <= 3 for m in messages)  # 4 frames per message
     assert sum("ahead" in m for m in messages) >= len(messages) - 2
     frames = flat_frames(stream)
     ticks = [f["tick"] for f in frames]
@@ -182,7 +182,8 @@ def test_a_late_room_skips_stale_frames_but_never_events_or_the_last_frame(setti
     assert seqs == list(range(seqs[0], seqs[0] + len(seqs)))
     frames = [m for m in stream if m["type"] == "frame"]
     ticks = [f["tick"] for f in frames]
-    assert client.app.state.registry.metrics.frames_skipped >= 7  # 1 s at 10 messages/s
+    per_second = 20 / settings.frames_per_message  # frame messages a second
+    assert client.app.state.registry.metrics.frames_skipped >= per_second - 2  # in 1 s
     assert not any(stalled[0] < t < stalled[0] + 96 for t in ticks)  # skipped, not sent late
     assert frames[-1].get("last") is True
     events = [m for m in stream if m["type"] == "event"]

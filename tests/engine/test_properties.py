@@ -161,6 +161,25 @@ def test_step_by_step_equals_simulate(table):
     assert live.at_rest()
 
 
+def test_a_shot_run_in_threads_equals_simulate(table):
+    """The server strikes on its loop, runs the tick loop in a thread (no GIL) and builds
+    the result on the loop again: the same bits as `simulate`, even with shots running side
+    by side."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from server.engine import ShotInMotion, rack
+
+    cases = [(rack("eight_ball", table, seed=s), Shot(0.01 * s, 4.0 + s, tip=(0.0, 0.2)))
+             for s in range(6)]
+    motions = [ShotInMotion(table, balls, shot) for balls, shot in cases]
+    with pytest.raises(RuntimeError):
+        motions[0].result()
+    with ThreadPoolExecutor(3) as pool:
+        list(pool.map(ShotInMotion.run, motions))
+    for motion, (balls, shot) in zip(motions, cases, strict=True):
+        assert digest(motion.result()) == digest(simulate(table, balls, shot))
+
+
 SCRIPT = """
 import hashlib, numpy as np
 from server.engine import Table, Shot, rack, simulate

@@ -115,7 +115,9 @@ def test_a_played_match_is_listed_detailed_and_replayed_exactly(settings, db_pat
                 m for m in live_msgs if m["type"] == "event"]
             assert again_msgs[-1] == live_msgs[-1] and live_msgs[-1]["last"]
             first = next(m for m in again_msgs if m["type"] == "frame")
-            assert [first["tick"], *(a["tick"] for a in first.get("ahead", ()))] == [6, 12]
+            per_message = settings.frames_per_message
+            assert [first["tick"], *(a["tick"] for a in first.get("ahead", ()))] == [
+                6 * (k + 1) for k in range(per_message)]
             assert [m["seq"] for m in replayed] == list(range(1, len(replayed) + 1))
             assert replayed[-1]["type"] == "shot_result"
             assert replayed[-1]["outcome"] == result["outcome"]

@@ -39,6 +39,8 @@ export class FramePlayer {
     this.rest = new Map(); // id -> {x, y, cel}: the table at rest
     this.current = new Map();
     this.ended = false;
+    this.onTime = null; // t of the newest frame sent at its own time (not `ahead`) ...
+    this.sinceOnTime = 0; // ... and the wall time since it came
   }
 
   /** The table at rest (from a `state`): clears the stream. */
@@ -71,6 +73,8 @@ export class FramePlayer {
     this.frames = [{ t: t0, balls: start }];
     this.playing = false;
     this.ended = false;
+    this.onTime = null;
+    this.sinceOnTime = 0;
   }
 
   /** True once playback has reached the shot's last frame. */
@@ -79,9 +83,17 @@ export class FramePlayer {
     return !this.playing || (this.ended && this.time >= last.t - 1e-9);
   }
 
-  /** Append a streamed frame: {t (s), balls: [{id, x, y, cel}] (x, y metres)}. */
+  /**
+   * Append a streamed frame: {t (s), balls: [{id, x, y, cel}] (x, y metres), ahead}.
+   * `ahead`: sent early with an earlier frame (several frames a message), so its arrival
+   * says nothing about where the stream is now.
+   */
   push(frame) {
     if (frame.last) this.ended = true;
+    if (!frame.ahead && (this.onTime === null || frame.t > this.onTime)) {
+      this.onTime = frame.t;
+      this.sinceOnTime = 0;
+    }
     const last = this.frames[this.frames.length - 1];
     const balls = new Map();
     for (const b of frame.balls) {
@@ -103,10 +115,20 @@ export class FramePlayer {
     }
   }
 
-  /** Newest frame time minus playback time: how far behind the stream we play. */
+  /**
+   * Where the stream is now (the newest on-time frame plus the wall time since it came, at
+   * most the newest frame) minus playback time: how far behind the stream we play. Frames
+   * sent ahead do not count, or every message would look like a jump forward.
+   */
   get lag() {
+    return this.streamNow - this.time;
+  }
+
+  get streamNow() {
     const last = this.frames[this.frames.length - 1];
-    return last ? last.t - this.time : 0;
+    if (!last) return this.time;
+    if (this.onTime === null) return last.t;
+    return Math.min(last.t, this.onTime + this.sinceOnTime);
   }
 
   /**
@@ -115,10 +137,11 @@ export class FramePlayer {
    */
   advance(dt) {
     if (!this.playing || this.frames.length === 0) return this.current ?? new Map();
+    this.sinceOnTime += dt;
     const lag = this.lag;
     let rate = 1;
     if (lag > this.delay * 4 + 0.25) {
-      this.time = this.frames[this.frames.length - 1].t - this.delay; // far behind: jump
+      this.time = this.streamNow - this.delay; // far behind: jump
     } else if (lag > this.delay * 1.5) {
       rate = 1.1;
     } else if (lag < this.delay * 0.5) {

@@ -150,7 +150,7 @@ function startRoom(roomId) {
           break;
         case 'frame':
           framesSeen += 1;
-          player.push({ t: e.t, balls: e.balls, last: e.last });
+          player.push({ t: e.t, balls: e.balls, last: e.last, ahead: e.ahead });
           break;
         case 'sound':
           sounds.push({ ...e, at: now });

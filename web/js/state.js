@@ -117,7 +117,7 @@ export function reduce(state, msg, now = 0) {
         if (early.tick <= s.lastFrameTick) continue;
         s.lastFrameTick = early.tick;
         effects.push({ kind: 'frame', t: early.tick / s.tickHz, balls: decodeBalls(early.b),
-          last: false });
+          last: false, ahead: true });
       }
       break;
     }

@@ -86,3 +86,30 @@ test('joining a shot mid-stream starts from the state`s tick', () => {
   const balls = p.advance(0.05);
   assert.ok(balls.get(0).x >= 1 && balls.get(0).x <= 1.1);
 });
+
+test('frames sent ahead (four a message) play at real-time speed, `delay` behind', () => {
+  // The server's stream: a frame every 0.05 s, sent four to a message (one on time, three
+  // ahead) every 0.2 s. Playback must run at speed 1 and never run dry between messages.
+  const p = new FramePlayer({ delay: 0.1 });
+  p.reset([{ id: 0, x: 0, y: 0 }]);
+  p.startShot();
+  const step = 1 / 60;
+  let wall = 0;
+  let next = 1; // index of the next frame to send
+  const behind = [];
+  for (let i = 0; i < 180; i++) { // 3 s of display
+    while (next * 0.05 <= wall + 1e-9 && next <= 60) {
+      for (let k = 0; k < 4 && next + k <= 60; k++) {
+        const t = (next + k) * 0.05;
+        p.push({ t, ahead: k > 0, last: next + k === 60, balls: [{ id: 0, x: t, y: 0, cel: 0 }] });
+      }
+      next += 4;
+    }
+    const x = p.advance(step).get(0).x;
+    wall += step;
+    if (wall > 0.5) behind.push(wall - x); // playback time = x in this stream
+  }
+  const mean = behind.reduce((a, b) => a + b, 0) / behind.length;
+  assert.ok(Math.abs(mean - 0.1) < 0.03, `mean delay ${mean}`);
+  assert.ok(Math.max(...behind) - Math.min(...behind) < 0.05, 'no stutter or sawtooth');
+});

@@ -163,28 +163,49 @@ def cels_of(phase, st, out, p):
         out[i] = int(math.floor((turns - math.floor(turns)) * n_cels)) % n_cels
 
 
-@njit(cache=True, nogil=True)  # the server runs shots in threads beside its loop
-def run_ticks(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width,
-              p, dt, first_tick, max_ticks, events, n_ev, frame_pos, frame_cels, frame_on):
-    """Run ticks until every ball is at rest, `max_ticks` have run, or the event buffer is
-    nearly full. Each tick's end state is written to the frame arrays.
+@njit(cache=True, nogil=True)
+def run_to_rest_kernel(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers,
+                       length, width, p, dt, max_ticks, event_capacity):
+    """A whole shot in one compiled call, so a thread running it holds the GIL only to
+    enter and to return (the server's event loop needs it for everything else).
 
-    Returns (ticks_run, n_ev, stalls)."""
+    The frame and event arrays grow by doubling.
+    Returns (frame_pos, frame_cels, frame_on, events, stalls)."""
+    n = pos.shape[0]
+    cap = 256
+    frame_pos = np.empty((cap, n, 2))
+    frame_cels = np.empty((cap, n), dtype=np.int64)
+    frame_on = np.empty((cap, n), dtype=np.bool_)
+    events = np.zeros((max(event_capacity, MAX_EVENTS_PER_TICK + 128), 6))
     ticks = 0
+    n_ev = 0
     stalls = 0
-    cap = events.shape[0]
-    while ticks < max_ticks and any_moving(st) and cap - n_ev > MAX_EVENTS_PER_TICK + 64:
-        t0 = (first_tick + ticks) * dt
+    while ticks < max_ticks and any_moving(st):
+        if ticks == cap:
+            cap *= 2
+            frame_pos = _grown(frame_pos, cap)
+            frame_cels = _grown(frame_cels, cap)
+            frame_on = _grown(frame_on, cap)
+        if events.shape[0] - n_ev <= MAX_EVENTS_PER_TICK + 64:
+            events = _grown(events, 2 * events.shape[0])
         n_ev, stalled = run_tick(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets,
-                                 centers, length, width, p, dt, t0, events, n_ev)
+                                 centers, length, width, p, dt, ticks * dt, events, n_ev)
         if stalled:
             stalls += 1
         frame_pos[ticks] = pos
         cels_of(phase, st, frame_cels[ticks], p)
-        for i in range(st.shape[0]):
+        for i in range(n):
             frame_on[ticks, i] = st[i] != POCKETED
         ticks += 1
-    return ticks, n_ev, stalls
+    return (frame_pos[:ticks].copy(), frame_cels[:ticks].copy(), frame_on[:ticks].copy(),
+            events[:n_ev].copy(), stalls)
+
+
+@njit(cache=True, nogil=True)
+def _grown(a, rows):
+    out = np.empty((rows,) + a.shape[1:], dtype=a.dtype)
+    out[:a.shape[0]] = a
+    return out
 
 
 def empty_events(capacity: int) -> np.ndarray:
