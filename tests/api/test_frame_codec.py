@@ -60,3 +60,29 @@ def test_a_real_shot_streams_the_rows_of_its_ticks():
         assert payload["shot"] == 7 and payload["tick"] == m.tick
         assert payload.get("last", False) is (m is frames[-1]) is (not m.droppable)
         assert plan.frames.rows(m.frame) == expected
+
+
+@settings(max_examples=300)
+@given(shot_id=st.integers(0, 10**6), tick=st.integers(0, 36_000),
+       time=st.floats(0, 300, allow_nan=False), speed=st.floats(0, 20, allow_nan=False),
+       kind=st.sampled_from(["strike", "ball", "cushion", "jaw", "pocket"]),
+       ids=st.lists(st.integers(0, 15), min_size=1, max_size=2),
+       target=st.integers(-1, 40))
+def test_event_text_is_what_json_dumps_gives(shot_id, tick, time, speed, kind, ids, target):
+    from server.engine import Event
+    from server.rooms.stream import encode, event_body
+
+    event = Event(time, kind, tuple(ids), speed, target)
+    assert event_body(shot_id, tick, event) == encode(
+        {"shot": shot_id, "tick": tick, "t": round(time, 4), "kind": kind, "ids": ids,
+         "speed": round(speed, 3), "target": target})
+
+
+def test_an_event_that_is_not_finite_is_refused():
+    import pytest
+
+    from server.engine import Event
+    from server.rooms.stream import event_body
+
+    with pytest.raises(ValueError):
+        event_body(1, 2, Event(0.1, "ball", (0, 1), float("inf"), -1))
