@@ -74,13 +74,21 @@ def create_app(settings: Settings | None = None,
 
 
 def _serve_web(app: FastAPI, web_dir: Path) -> None:
-    """`/` and the static files from `web/`; `/r/{room_id}` is the same page (room links)."""
+    """`/` and the static files from `web/`; `/r/{room_id}` (a table) and `/m/{match_id}`
+    (a finished match, replayed) are the same page: the client routes on the path."""
     index = web_dir / "index.html"
 
-    @app.get("/r/{room_id}", include_in_schema=False)
-    async def room_page(room_id: str) -> FileResponse:
+    def page() -> FileResponse:
         if not index.is_file():
             raise HTTPException(404, {"code": "no_client", "message": "web/ is missing."})
         return FileResponse(index, media_type="text/html")
+
+    @app.get("/r/{room_id}", include_in_schema=False)
+    async def room_page(room_id: str) -> FileResponse:
+        return page()
+
+    @app.get("/m/{match_id}", include_in_schema=False)
+    async def match_page(match_id: str) -> FileResponse:
+        return page()
 
     app.mount("/", StaticFiles(directory=web_dir, html=True, check_dir=False), name="web")

@@ -3,12 +3,14 @@ and the replay of a stored shot streamed like the live one (NDJSON, paced in rea
 
 from __future__ import annotations
 
+import math
 from typing import Annotated, Literal
 
 from fastapi import APIRouter, HTTPException, Query, Request
 from fastapi.responses import StreamingResponse
 from pydantic import BaseModel
 
+from server.engine import BallSet, MotionState, Table
 from server.store import Database
 from server.store.replay import stream_replay
 
@@ -62,11 +64,13 @@ class StoredShot(BaseModel):
     outcome: dict
     played_at: float
     replay: str
+    b: list[list[int]]  # the balls on the table before it, as in `state`: [id, x_mm, y_mm, cel]
 
 
 class MatchDetail(MatchBase):
     games: list[GameSummary]
     shots: list[StoredShot]
+    geometry: dict | None  # the table as `state.table` gives it (to draw a replay); None: no shot
 
 
 def _db(request: Request) -> Database:
@@ -99,8 +103,29 @@ async def show_match(match_id: int, request: Request) -> dict:
     if found is None:
         raise _missing("match")
     match, games, shots = found
-    return {**match.to_dict(), "games": [g.to_dict() for g in games],
-            "shots": [s.to_dict() for s in shots]}
+    rows = [s.to_dict() for s in shots]
+    for row in rows:
+        row["b"] = _resting_rows(row["balls"])
+    geometry = Table(*rows[0]["table"]).to_dict() if rows else None
+    return {**match.to_dict(), "games": [g.to_dict() for g in games], "shots": rows,
+            "geometry": geometry}
+
+
+CELS = 16  # sprite cels per turn, as the stream counts them
+
+
+def _resting_rows(balls: dict) -> list[list[int]]:
+    """The stored balls (exact floats) in the stream's integer rows, cel from the roll."""
+    state = BallSet.from_dict(balls)
+    rows = []
+    for i, (x, y), st, phase in zip(state.ids.tolist(), state.positions.tolist(),
+                                    state.states.tolist(), state.phases.tolist(), strict=True):
+        if st == MotionState.POCKETED:
+            continue
+        turns = phase / (2 * math.pi)
+        cel = int(math.floor((turns - math.floor(turns)) * CELS)) % CELS
+        rows.append([i, round(x * 1000), round(y * 1000), cel])
+    return rows
 
 
 @router.get("/api/matches/{match_id}/shots/{n}/replay", responses={

@@ -141,6 +141,8 @@ def test_web_client_is_served_at_root_and_room_links(client):
     link = client.get(f"/r/{room_id}")
     assert link.status_code == 200 and link.text == index.text
     assert link.headers["content-type"].startswith("text/html")
+    replay = client.get("/m/5")  # a finished match's replay: the client routes on the path
+    assert replay.status_code == 200 and replay.text == index.text
 
 
 def test_stats_report_rooms_connections_and_frame_lateness(settings):

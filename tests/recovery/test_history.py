@@ -67,6 +67,7 @@ def test_a_played_match_is_listed_detailed_and_replayed_exactly(settings, db_pat
                 client.websocket_connect(f"{url}?token={tokens[1]}") as b, \
                 client.websocket_connect(url) as s:
             state = ws_until(s, "state")[-1]
+            first_state = state
             live = []
             for payload in SHOTS:
                 seen, state = play_shot((a, b), s, state, payload)
@@ -93,6 +94,10 @@ def test_a_played_match_is_listed_detailed_and_replayed_exactly(settings, db_pat
         assert detail["games"][0]["winner"] == 1 - conceder
         shots = detail["shots"]
         assert [s["n"] for s in shots] == [1, 2, 3]
+        # what a replay draws: the table as `state` gives it and the balls before each shot
+        assert detail["geometry"] == first_state["table"]
+        befores = [first_state] + [after for _, after in live[:-1]]
+        assert [stored["b"] for stored in shots] == [st["balls"] for st in befores]
         for stored, payload, (seen, after) in zip(shots, SHOTS, live, strict=True):
             result = next(m for m in seen if m["type"] == "shot_result")
             assert stored["shot"]["angle"] == payload["angle"]

@@ -9,21 +9,27 @@
 import { api, RoomSocket, memory } from './net.js';
 import { initialState, reduce, setConnection, isMyTurn } from './state.js';
 import { FramePlayer } from './interpolation.js';
-import { makeView, placementArea, clampTip, castGuide } from './geometry.js';
-import { buildSprites, CELS } from './sprites.js';
+import { placementArea, clampTip, castGuide } from './geometry.js';
+import { CELS } from './sprites.js';
 import {
-  drawTable, drawBalls, drawGuide, drawCue, drawPlacement, drawPocketCall, drawPowerMeter,
-  drawSinking,
+  drawBalls, drawGuide, drawCue, drawPlacement, drawPocketCall, drawPowerMeter, drawSinking,
 } from './render.js';
+import { TableCanvas } from './tablecanvas.js';
+import { startReplay } from './replay.js';
 import { attachPointer, AimController } from './input.js';
 import { TableAudio } from './audio.js';
-import { $, renderRooms, renderHud, renderChat, renderDecision } from './ui.js';
+import {
+  $, renderRooms, renderHistory, renderHud, renderChat, renderDecision,
+} from './ui.js';
 
 const AIM_INTERVAL = 0.1; // seconds between two `aim` messages (the server asks <= 20/s)
 const REMOTE_AIM_TTL = 6; // seconds a relayed aim stays drawn without news
 
 const roomMatch = location.pathname.match(/^\/r\/([A-Za-z0-9_-]+)\/?$/);
-if (roomMatch) startRoom(roomMatch[1]); else startLobby();
+const matchMatch = location.pathname.match(/^\/m\/([^/]+)\/?$/);
+if (roomMatch) startRoom(roomMatch[1]);
+else if (matchMatch) startReplay(decodeURIComponent(matchMatch[1]));
+else startLobby();
 
 // ---- lobby ---------------------------------------------------------------------------
 
@@ -68,8 +74,16 @@ function startLobby() {
       $('no-rooms').hidden = open.length > 0;
     } catch (e) { showError(`Cannot list tables: ${e.message}`); }
   };
+  const refreshHistory = async () => {
+    try {
+      const { matches } = await api.finishedMatches(10);
+      renderHistory($('history'), matches);
+      $('no-history').hidden = matches.length > 0;
+    } catch (e) { showError(`Cannot list finished matches: ${e.message}`); }
+  };
   refresh();
-  setInterval(() => { if (!document.hidden) refresh(); }, 3000);
+  refreshHistory();
+  setInterval(() => { if (!document.hidden) { refresh(); refreshHistory(); } }, 3000);
 }
 
 // ---- a table -------------------------------------------------------------------------
@@ -100,12 +114,10 @@ function startRoom(roomId) {
   let shotsSeen = 0;
 
   const canvas = $('table');
-  const ctx = canvas.getContext('2d');
+  const surface = new TableCanvas(canvas, $('table-wrap'));
   let view = null;
   let dpr = 1;
-  let tableLayer = null;
   let sprites = null;
-  let layoutKey = '';
 
   // -- the socket
   const seatToken = () => memory.seat(roomId)?.token ?? null;
@@ -131,7 +143,6 @@ function startRoom(roomId) {
     if (msg.type === 'error' && msg.ref === 'aim') state = { ...state, error: null };
     if (state.table && state.table !== prevTable) {
       player.radius = state.table.ball_radius;
-      layoutKey = '';
     }
     for (const e of res.effects) {
       switch (e.kind) {
@@ -251,33 +262,6 @@ function startRoom(roomId) {
     show();
   }
 
-  // -- layout: canvas backing store in device pixels, sprites at the ball's pixel size
-  function layout() {
-    const wrap = $('table-wrap');
-    const w = Math.max(50, wrap.clientWidth);
-    const h = Math.max(50, wrap.clientHeight);
-    dpr = window.devicePixelRatio || 1;
-    const key = `${w}x${h}@${dpr}`;
-    if (!state.table || key === layoutKey) return;
-    layoutKey = key;
-    canvas.width = Math.round(w * dpr);
-    canvas.height = Math.round(h * dpr);
-    view = makeView(state.table, w, h);
-    tableLayer = document.createElement('canvas');
-    tableLayer.width = canvas.width;
-    tableLayer.height = canvas.height;
-    const tctx = tableLayer.getContext('2d');
-    tctx.setTransform(dpr, 0, 0, dpr, 0, 0);
-    drawTable(tctx, state.table, view);
-    const rPx = state.table.ball_radius * view.scale * dpr;
-    if (!sprites || Math.abs(sprites.radius - rPx) > sprites.radius * 0.08) {
-      sprites = buildSprites(rPx);
-    }
-  }
-  new ResizeObserver(() => { layoutKey = ''; }).observe($('table-wrap'));
-  matchMedia(`(resolution: ${window.devicePixelRatio}dppx)`)
-    .addEventListener?.('change', () => { layoutKey = ''; });
-
   // -- the loop
   let last = performance.now();
   let lastLoopAt = 0;
@@ -351,11 +335,9 @@ function startRoom(roomId) {
   }
 
   function draw(now) {
-    layout();
-    if (!view || !tableLayer) return;
-    ctx.setTransform(1, 0, 0, 1, 0, 0);
-    ctx.drawImage(tableLayer, 0, 0);
-    ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+    if (!surface.layout(state.table)) return;
+    ({ view, dpr, sprites } = surface);
+    const ctx = surface.begin();
     const sit = situation();
     const table = state.table;
     const area = sit.myTurn ? placementArea(table, sit.ballInHand) : null;

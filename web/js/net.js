@@ -31,7 +31,31 @@ export const api = {
   getRoom: (roomId) => request('GET', `/api/rooms/${encodeURIComponent(roomId)}`),
   join: (roomId, name) => request('POST', `/api/rooms/${encodeURIComponent(roomId)}/join`,
     { name }),
+  finishedMatches: (limit = 10) => request('GET', `/api/matches?status=finished&limit=${limit}`),
+  getMatch: (matchId) => request('GET', `/api/matches/${encodeURIComponent(matchId)}`),
 };
+
+/**
+ * Read a newline-delimited JSON response (a shot's replay) and hand each message to
+ * `onMessage` as it arrives; resolves when the stream ends (rejects if it is aborted).
+ */
+export async function readNdjson(response, onMessage) {
+  const reader = response.body.getReader();
+  const decoder = new TextDecoder();
+  let buffered = '';
+  for (;;) {
+    const { value, done } = await reader.read();
+    buffered += decoder.decode(value ?? new Uint8Array(), { stream: !done });
+    let newline;
+    while ((newline = buffered.indexOf('\n')) >= 0) {
+      const line = buffered.slice(0, newline).trim();
+      buffered = buffered.slice(newline + 1);
+      if (line) onMessage(JSON.parse(line));
+    }
+    if (done) break;
+  }
+  if (buffered.trim()) onMessage(JSON.parse(buffered));
+}
 
 /** Close codes after which reconnecting cannot help. */
 const FINAL_CLOSE = new Set([4000]);

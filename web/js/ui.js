@@ -80,6 +80,40 @@ export function renderRooms(list, rooms, { onJoin, onWatch }) {
   list.replaceChildren(...items);
 }
 
+/** "Ana 2–1 Ben" style summary of a stored match. */
+export function matchLine(m) {
+  const [a, b] = m.players ?? [];
+  const [sa, sb] = m.score ?? [0, 0];
+  return `${a ?? '?'} ${sa}–${sb} ${b ?? '?'}`;
+}
+
+/** Fill the lobby's list of finished matches, each with a link to watch it again. */
+export function renderHistory(list, matches) {
+  const items = matches.map((m) => {
+    const li = document.createElement('li');
+    li.dataset.testid = 'history-match';
+    li.dataset.match = String(m.id);
+    const what = document.createElement('div');
+    what.className = 'what';
+    const title = document.createElement('div');
+    title.textContent = matchLine(m);
+    const who = document.createElement('div');
+    who.className = 'who';
+    const when = m.finished_at ? new Date(m.finished_at * 1000).toLocaleString() : '';
+    who.textContent = [GAME_NAMES[m.game] ?? m.game, m.winner_name ? `${m.winner_name} won` : '',
+      `${m.shots} shots`, when].filter(Boolean).join(' · ');
+    what.append(title, who);
+    const watch = document.createElement('a');
+    watch.href = `/m/${m.id}`;
+    watch.className = 'button';
+    watch.textContent = 'Watch';
+    watch.dataset.testid = 'watch-match';
+    li.append(what, watch);
+    return li;
+  });
+  list.replaceChildren(...items);
+}
+
 /** Update the HUD from the state (called every frame; cheap when nothing changed). */
 export function renderHud(state, now) {
   const m = state.match;

@@ -1,0 +1,64 @@
+/**
+ * The canvas a table is drawn on, shared by the live table and the replay: the backing
+ * store in device pixels, the cloth and rails pre-drawn on a layer of their own, and the
+ * ball sprites at the ball's pixel size. Rebuilt only when the size or the table changes.
+ */
+
+import { makeView } from './geometry.js';
+import { buildSprites } from './sprites.js';
+import { drawTable } from './render.js';
+
+export class TableCanvas {
+  constructor(canvas, wrap) {
+    this.canvas = canvas;
+    this.wrap = wrap;
+    this.ctx = canvas.getContext('2d');
+    this.view = null;
+    this.dpr = 1;
+    this.sprites = null;
+    this.layer = null;
+    this.key = '';
+    this.table = null;
+    new ResizeObserver(() => this.invalidate()).observe(wrap);
+    matchMedia(`(resolution: ${window.devicePixelRatio}dppx)`)
+      .addEventListener?.('change', () => this.invalidate());
+  }
+
+  invalidate() { this.key = ''; }
+
+  /** Fit `table` to the wrap; true when there is something to draw on. */
+  layout(table) {
+    if (!table) return false;
+    if (table !== this.table) { this.table = table; this.key = ''; }
+    const w = Math.max(50, this.wrap.clientWidth);
+    const h = Math.max(50, this.wrap.clientHeight);
+    this.dpr = window.devicePixelRatio || 1;
+    const key = `${w}x${h}@${this.dpr}`;
+    if (key !== this.key) {
+      this.key = key;
+      this.canvas.width = Math.round(w * this.dpr);
+      this.canvas.height = Math.round(h * this.dpr);
+      this.view = makeView(table, w, h);
+      this.layer = document.createElement('canvas');
+      this.layer.width = this.canvas.width;
+      this.layer.height = this.canvas.height;
+      const tctx = this.layer.getContext('2d');
+      tctx.setTransform(this.dpr, 0, 0, this.dpr, 0, 0);
+      drawTable(tctx, table, this.view);
+      const rPx = table.ball_radius * this.view.scale * this.dpr;
+      if (!this.sprites || Math.abs(this.sprites.radius - rPx) > this.sprites.radius * 0.08) {
+        this.sprites = buildSprites(rPx);
+      }
+    }
+    return !!(this.view && this.layer);
+  }
+
+  /** Paint the empty table; the context is left in CSS pixels for what comes on top. */
+  begin() {
+    const { ctx } = this;
+    ctx.setTransform(1, 0, 0, 1, 0, 0);
+    ctx.drawImage(this.layer, 0, 0);
+    ctx.setTransform(this.dpr, 0, 0, this.dpr, 0, 0);
+    return ctx;
+  }
+}
