@@ -14,7 +14,9 @@ import argparse
 import asyncio
 import json
 import statistics
+import tempfile
 from dataclasses import replace
+from pathlib import Path
 
 import httpx
 import websockets
@@ -23,6 +25,7 @@ from websockets.asyncio.client import ClientConnection
 from server.app import create_app
 from server.config import Settings
 from server.embedded import bound_socket, serving
+from server.store import Database
 
 
 class CountingConnection(ClientConnection):
@@ -75,7 +78,9 @@ def main() -> None:
         # pace 2: fast enough, and never so fast that the room skips stale frames
         settings = replace(Settings(), frame_every=every, frames_per_message=per_message,
                            pace=2.0, ws_deflate=True)
-        with serving(create_app(settings), settings, bound_socket()) as address:
+        scratch = Path(tempfile.mkdtemp(prefix="bench-stream-")) / "billiards.db"
+        app = create_app(settings, store=Database(scratch))  # not the game's database
+        with serving(app, settings, bound_socket()) as address:
             for compression in (None, "deflate"):
                 runs = [asyncio.run(one_break(address, compression)) for _ in range(args.runs)]
                 rate = statistics.median(r[0] for r in runs)
