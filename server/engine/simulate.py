@@ -62,7 +62,7 @@ _KIND_NAMES = tuple(kind.value for kind in EVENT_CODES)
 
 def _events_from(rows: np.ndarray, ids: np.ndarray) -> list[Event]:
     """`Event`s from the kernel's event rows. A sustained contact can log thousands of
-    events in one shot, so this loop stays lean: it holds the GIL the server's loop needs."""
+    events in one shot, so this loop stays lean: the server runs it on its event loop."""
     names, id_of = _KIND_NAMES, ids.tolist()
     codes = rows[:, 1].astype(np.int64).tolist()
     first = rows[:, 2].astype(np.int64).tolist()
@@ -87,6 +87,15 @@ def step(table: Table, balls: BallSet, tick: float = DEFAULT_TICK, time: float =
     return _events_from(events[:n_ev], balls.ids)
 
 
+def _run_kernel(geo: _Geometry, s: BallSet, tick: float, params: np.ndarray) -> tuple:
+    """(frame positions, cels, on-table flags, event rows, stalled ticks); `s` is advanced
+    in place to rest."""
+    return run_to_rest_kernel(
+        s.positions, s.velocities, s.spins, s.states, s.phases, s.pockets, geo.cushions,
+        geo.jaws, geo.pockets, geo.centers, geo.length, geo.width, params, tick,
+        int(MAX_SHOT_SECONDS / tick), _EVENT_CAPACITY)
+
+
 class ShotInMotion:
     """A shot in three parts, so a server can run the long middle one in a thread without
     holding the GIL its event loop needs: the strike (here), `run()` (the whole tick loop,
@@ -105,11 +114,7 @@ class ShotInMotion:
 
     def run(self) -> None:
         """Run every tick until the balls are at rest (the guard: MAX_SHOT_SECONDS)."""
-        s, g = self.state, self._geometry
-        self._raw = run_to_rest_kernel(
-            s.positions, s.velocities, s.spins, s.states, s.phases, s.pockets, g.cushions,
-            g.jaws, g.pockets, g.centers, g.length, g.width, self._params, self.tick,
-            int(MAX_SHOT_SECONDS / self.tick), _EVENT_CAPACITY)
+        self._raw = _run_kernel(self._geometry, self.state, self.tick, self._params)
 
     def result(self) -> ShotResult:
         if self._raw is None:
@@ -140,11 +145,8 @@ def run_to_rest(table: Table, state: BallSet, tick: float = DEFAULT_TICK,
                 params: PhysicsParams = DEFAULT_PARAMS,
                 events: list[Event] | None = None) -> FrameSequence:
     """Advance `state` in place until no ball moves; appends events to `events`."""
-    geo = _geometry(table)
-    positions, cels, on_table, rows, _ = run_to_rest_kernel(
-        state.positions, state.velocities, state.spins, state.states, state.phases,
-        state.pockets, geo.cushions, geo.jaws, geo.pockets, geo.centers, geo.length,
-        geo.width, params.array(), float(tick), int(MAX_SHOT_SECONDS / tick), _EVENT_CAPACITY)
+    positions, cels, on_table, rows, _ = _run_kernel(_geometry(table), state, float(tick),
+                                                     params.array())
     if events is not None:
         events.extend(_events_from(rows, state.ids))
     return FrameSequence(float(tick), positions, cels, on_table)

@@ -91,7 +91,7 @@ def test_a_finished_match_is_listed_and_replayed_shot_by_shot(base_url, new_page
     assert len(rack) == 16
     page.get_by_test_id("replay-speed").select_option("4")
     page.get_by_test_id("replay-play").click()
-    expect(page.get_by_test_id("replay-play")).to_have_text("Pause")
+    expect(page.get_by_test_id("replay-play")).to_have_text("Stop")
     page.wait_for_function("window.__replay.framesSeen > 5")
     cue_start = next(b for b in rack if b["id"] == 0)
     page.wait_for_function(

@@ -19,8 +19,9 @@ import { startReplay } from './replay.js';
 import { attachPointer, AimController } from './input.js';
 import { TableAudio } from './audio.js';
 import {
-  $, renderRooms, renderHistory, renderHud, renderChat, renderDecision,
+  $, bindMute, renderRooms, renderHistory, renderHud, renderChat, renderDecision,
 } from './ui.js';
+import { startLoop } from './loop.js';
 
 const AIM_INTERVAL = 0.1; // seconds between two `aim` messages (the server asks <= 20/s)
 const REMOTE_AIM_TTL = 6; // seconds a relayed aim stays drawn without news
@@ -215,17 +216,7 @@ function startRoom(roomId) {
     unlockAudio();
     if (ev.key === 'Escape') inputQueue.push({ type: 'cancel' });
   });
-  const muteBtn = $('mute');
-  const showMute = () => {
-    muteBtn.textContent = audio.muted ? 'Sound off' : 'Sound on';
-    muteBtn.setAttribute('aria-pressed', String(audio.muted));
-  };
-  showMute();
-  muteBtn.addEventListener('click', () => {
-    audio.setMuted(!audio.muted);
-    memory.setMuted(audio.muted);
-    showMute();
-  });
+  bindMute($('mute'), audio, (muted) => memory.setMuted(muted));
   $('rematch').addEventListener('click', () => send({ type: 'rematch' }));
   $('concede').addEventListener('click', () => {
     if (confirm('Concede this frame?')) send({ type: 'concede' });
@@ -263,8 +254,6 @@ function startRoom(roomId) {
   }
 
   // -- the loop
-  let last = performance.now();
-  let lastLoopAt = 0;
   let balls = new Map();
 
   function situation() {
@@ -373,25 +362,13 @@ function startRoom(roomId) {
     }
   }
 
-  function tick() {
-    const t = performance.now();
-    const dt = Math.min(0.1, Math.max(0, (t - last) / 1000));
-    last = t;
-    lastLoopAt = t;
-    update(dt, t / 1000);
-    draw(t / 1000);
-    renderHud(state, t / 1000);
+  startLoop((dt, now) => {
+    update(dt, now);
+    draw(now);
+    renderHud(state, now);
     renderChat(state);
     renderDecision(state, (option) => send({ type: 'decide', option }));
-  }
-
-  function frame() {
-    tick();
-    requestAnimationFrame(frame);
-  }
-  requestAnimationFrame(frame);
-  // Hidden tabs get no animation frames: keep the HUD and the stream moving anyway.
-  setInterval(() => { if (performance.now() - lastLoopAt > 300) tick(); }, 250);
+  });
 
   // Read-only hook for automated tests and debugging.
   window.__pool = {

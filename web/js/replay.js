@@ -6,7 +6,7 @@
  * (`GET /api/matches/{id}/shots/{n}/replay`, one JSON message a line, paced at the chosen
  * speed). The messages go through the live table's reducer, frame player, sprites and
  * sounds, so a replay looks and sounds exactly like the game did. Shots follow each other
- * while playing; previous/next move by one shot.
+ * while playing; Stop puts the shot back at its start; previous/next move by one shot.
  */
 
 import { api, memory, readNdjson } from './net.js';
@@ -16,7 +16,8 @@ import { CELS } from './sprites.js';
 import { drawBalls } from './render.js';
 import { TableAudio } from './audio.js';
 import { TableCanvas } from './tablecanvas.js';
-import { $, setText, matchLine } from './ui.js';
+import { $, bindMute, setText, matchLine } from './ui.js';
+import { startLoop } from './loop.js';
 
 const PAUSE_BETWEEN_SHOTS = 0.8; // seconds the table rests before the next shot plays
 
@@ -45,7 +46,7 @@ export function startReplay(matchId) {
     el.hidden = !text;
   };
   const playButton = $('replay-play');
-  const showPlaying = () => { playButton.textContent = playing ? 'Pause' : 'Play'; };
+  const showPlaying = () => { playButton.textContent = playing ? 'Stop' : 'Play'; };
 
   async function load() {
     try {
@@ -164,32 +165,8 @@ export function startReplay(matchId) {
     speed = Number(ev.target.value) || 1;
     if (playing) show(index);
   });
-  const muteBtn = $('replay-mute');
-  const showMute = () => {
-    muteBtn.textContent = audio.muted ? 'Sound off' : 'Sound on';
-    muteBtn.setAttribute('aria-pressed', String(audio.muted));
-  };
-  showMute();
-  muteBtn.addEventListener('click', () => {
-    audio.unlock();
-    audio.setMuted(!audio.muted);
-    memory.setMuted(audio.muted);
-    showMute();
-  });
-
-  let last = performance.now();
-  let lastLoopAt = 0;
-  function tick() {
-    const t = performance.now();
-    const dt = Math.min(0.1, Math.max(0, (t - last) / 1000));
-    last = t;
-    lastLoopAt = t;
-    update(dt, t / 1000);
-    draw();
-  }
-  function frame() { tick(); requestAnimationFrame(frame); }
-  requestAnimationFrame(frame);
-  setInterval(() => { if (performance.now() - lastLoopAt > 300) tick(); }, 250);
+  bindMute($('replay-mute'), audio, (muted) => memory.setMuted(muted));
+  startLoop((dt, now) => { update(dt, now); draw(); });
   load();
 
   // Read-only hook for automated tests and debugging.

@@ -80,6 +80,21 @@ export function renderRooms(list, rooms, { onJoin, onWatch }) {
   list.replaceChildren(...items);
 }
 
+/** A sound on/off button for `audio`; `remember(muted)` keeps the choice. */
+export function bindMute(button, audio, remember) {
+  const show = () => {
+    button.textContent = audio.muted ? 'Sound off' : 'Sound on';
+    button.setAttribute('aria-pressed', String(audio.muted));
+  };
+  show();
+  button.addEventListener('click', () => {
+    audio.unlock();
+    audio.setMuted(!audio.muted);
+    remember(audio.muted);
+    show();
+  });
+}
+
 /** "Ana 2–1 Ben" style summary of a stored match. */
 export function matchLine(m) {
   const [a, b] = m.players ?? [];
