@@ -20,7 +20,8 @@ runs:
   against the shot's schedule, p50 / p99 ("sent"): the part of the lateness that is the
   server's, the rest being the network and the clients (this process, on the same cores);
 - server CPU (process user+system time from /proc, all threads, in % of one core) and this
-  client process's CPU, so a saturated client is visible;
+  client process's CPU, so a saturated client is visible; and the machine's steal time (a
+  VM host taking the cores away: runs with high steal are slow for reasons outside the code);
 - frames skipped: the share of a shot's frames a spectator did not get (an overloaded
   server skips frames that are already stale rather than send them late; a slow client's
   outbox drops them too);
@@ -125,6 +126,14 @@ def cpu_seconds(pid: int) -> float:
 def own_cpu_seconds() -> float:
     usage = resource.getrusage(resource.RUSAGE_SELF)
     return usage.ru_utime + usage.ru_stime
+
+
+def machine_ticks() -> tuple[int, int]:
+    """(all, stolen) CPU ticks of the machine (/proc/stat): a VM's host can take cores away
+    ("steal"), which shows as a slow server that is not the server's fault."""
+    fields = [int(v) for v in Path("/proc/stat").read_text().split("\n", 1)[0].split()[1:]]
+    steal = fields[7] if len(fields) > 7 else 0
+    return sum(fields[:8]), steal
 
 
 async def wait_healthy(base: str, proc: subprocess.Popen) -> None:
@@ -343,6 +352,7 @@ async def drive(proc: subprocess.Popen, base: str, rooms: int, seconds: float,
     await asyncio.sleep(min(8.0, 2.0 + seconds / 4))  # warm up: every room starts shooting
     bytes0 = sum(ws.received for ws in connected)
     cpu0, own0, t0 = cpu_seconds(proc.pid), own_cpu_seconds(), time.perf_counter()
+    all0, steal0 = machine_ticks()
     stats.measuring = True
     await asyncio.sleep(seconds)
     stats.measuring = False
@@ -350,6 +360,7 @@ async def drive(proc: subprocess.Popen, base: str, rooms: int, seconds: float,
     async with httpx.AsyncClient(base_url=base, timeout=60) as http:
         server = (await http.get("/api/stats", params={"window": elapsed})).json()["stream"]
     cpu1, own1 = cpu_seconds(proc.pid), own_cpu_seconds()
+    all1, steal1 = machine_ticks()
     bytes1 = sum(ws.received for ws in connected)
     stop.set()
     for task in tasks:
@@ -370,6 +381,7 @@ async def drive(proc: subprocess.Popen, base: str, rooms: int, seconds: float,
         "server_start_p99_ms": server["start_p99_ms"] if server["shots"] else math.nan,
         "shots": stats.shots,
         "server_cpu": 100 * (cpu1 - cpu0) / elapsed,
+        "steal_pct": 100 * (steal1 - steal0) / max(1, all1 - all0),
         "client_cpu": 100 * (own1 - own0) / elapsed,
         "bytes_per_s_client": (bytes1 - bytes0) / elapsed / max(1, clients),
         "rolling_bytes_per_s": stats.rolling_bytes / stats.rolling_seconds
@@ -391,6 +403,7 @@ COLUMNS = [("rooms", "rooms", "{:.0f}"), ("clients", "clients", "{:.0f}"),
            ("server start p99 ms", "server_start_p99_ms", "{:.1f}"),
            ("shots", "shots", "{:.0f}"), ("server CPU %", "server_cpu", "{:.0f}"),
            ("client CPU %", "client_cpu", "{:.0f}"),
+           ("steal %", "steal_pct", "{:.0f}"),
            ("B/s/client", "bytes_per_s_client", "{:.0f}"),
            ("B/s rolling", "rolling_bytes_per_s", "{:.0f}")]
 

@@ -222,16 +222,35 @@ class FrameMessage(ServerMessage):
     last: bool | None = None
 
 
+SoundKind = Literal["strike", "ball", "cushion", "jaw", "pocket"]
+
+
+class AlsoEvent(BaseModel):
+    """A later sound of the same stretch of the shot, carried by an `event` message."""
+
+    model_config = ConfigDict(extra="forbid")
+    tick: int
+    t: float
+    kind: SoundKind
+    ids: list[int]
+    speed: float
+    target: int
+
+
 class EventMessage(ServerMessage):
+    """A sound; `also`: the ones that follow within one frame message's span, each to be
+    played at its own `t`."""
+
     type: Literal["event"] = "event"
     seq: int
     shot: int
     tick: int
     t: float
-    kind: Literal["strike", "ball", "cushion", "jaw", "pocket"]
+    kind: SoundKind
     ids: list[int]
     speed: float
     target: int
+    also: list[AlsoEvent] | None = None
 
 
 class ShotResultMessage(ServerMessage):

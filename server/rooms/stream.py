@@ -1,8 +1,9 @@
 """Turn a simulated shot into the timed messages a room streams (pure, no I/O).
 
 Frames go out every `frame_every` ticks (plus the last tick) with integer millimetres;
-events go out at their time, before the frame of the tick they fall in. `rest` events are
-left out: clients make sounds from the others.
+events go out at their time, before the frame of the tick they fall in, those within one
+frame message's span of each other in one message (`also`). `rest` events are left out:
+clients make sounds from the others.
 """
 
 from __future__ import annotations
@@ -144,8 +145,13 @@ def plan_shot(result: ShotResult, shot_id: int, frame_every: int,
             body = f'{body[:-1]},"ahead":[{rest}]}}'
         at = ticks[j] * tick
         items.append((at, 1, Timed(at, "frame", body, j != last, tick=ticks[j], frame=j)))
-    for event_tick, event in _sounds(result.events, tick):
+    window = frame_every * frames_per_message * tick  # the span of one frame message
+    for group in _grouped(_sounds(result.events, tick), window):
+        (event_tick, event), later = group[0], group[1:]
         body = event_body(shot_id, event_tick, event)
+        if later:
+            also = ",".join("{" + _without_shot(event_body(shot_id, t, e)) for t, e in later)
+            body = f'{body[:-1]},"also":[{also}]}}'
         items.append((event.time, 0, Timed(event.time, "event", body, False,
                                            tick=event_tick)))
     items.sort(key=lambda item: (item[0], item[1]))
@@ -163,6 +169,24 @@ def event_body(shot_id: int, event_tick: int, event: Event) -> str:
     return (f'{{"shot":{int(shot_id)},"tick":{int(event_tick)},"t":{t!r},'
             f'"kind":{json.dumps(event.kind)},"ids":[{ids}],"speed":{speed!r},'
             f'"target":{int(event.target)}}}')
+
+
+def _without_shot(body: str) -> str:
+    return body[body.index('"tick"'):]
+
+
+def _grouped(sounds: list[tuple[int, Event]], window: float) -> list[list[tuple[int, Event]]]:
+    """Sounds in runs that start within `window` seconds of a run's first one: each run is
+    one `event` message (the first event, the others in `also`), sent at the first one's
+    time. A break's contacts came as dozens of messages a second per member, more than its
+    frame messages; the client plays each sound at its own `t` anyway."""
+    runs: list[list[tuple[int, Event]]] = []
+    for item in sounds:
+        if runs and item[1].time < runs[-1][0][1].time + window:
+            runs[-1].append(item)
+        else:
+            runs.append([item])
+    return runs
 
 
 def _sounds(events: list[Event], tick: float) -> list[tuple[int, Event]]:

@@ -99,6 +99,17 @@ def errors_in(messages: list[dict]) -> list[dict]:
     return [m for m in messages if m["type"] == "error"]
 
 
+def flat_events(stream: list[dict]) -> list[dict]:
+    """Every event of a stream in time order: each `event` message and the events it
+    carries in `also` (with the message's shot)."""
+    out = []
+    for m in stream:
+        if m["type"] == "event":
+            out.append(m)
+            out.extend({"type": "event", "shot": m["shot"], **a} for a in m.get("also", ()))
+    return out
+
+
 def flat_frames(stream: list[dict]) -> list[dict]:
     """Every frame of a stream in tick order: each `frame` message and the frames it
     carries early in `ahead` (with the message's shot)."""

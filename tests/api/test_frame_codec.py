@@ -86,3 +86,22 @@ def test_an_event_that_is_not_finite_is_refused():
 
     with pytest.raises(ValueError):
         event_body(1, 2, Event(0.1, "ball", (0, 1), float("inf"), -1))
+
+
+def test_sounds_close_together_share_a_message_and_none_is_lost():
+    """A break: each event message carries the sounds of one frame message's span (`also`);
+    flattened, they are exactly the sounds chosen, in time order."""
+    from server.rooms.stream import _sounds
+
+    table = Table.pool("9ft")
+    result = simulate(table, rack("eight_ball", table, seed=3), Shot(0.0, 9.0))
+    plan = plan_shot(result, 7, 6, 4)
+    messages = [json.loads(m.body) for m in plan if m.kind == "event"]
+    flat = [e for m in messages for e in [m, *m.get("also", ())]]
+    chosen = _sounds(result.events, result.frames.tick)
+    assert [(e["tick"], e["kind"], e["t"]) for e in flat] == [
+        (tick, ev.kind, round(ev.time, 4)) for tick, ev in chosen]
+    assert len(messages) < len(flat) / 2
+    window = 6 * 4 * result.frames.tick
+    for m in messages:
+        assert all(m["t"] <= a["t"] < m["t"] + window + 1e-4 for a in m.get("also", ()))

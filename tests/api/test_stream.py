@@ -16,6 +16,7 @@ from server.api.messages import (
 from .conftest import (
     BREAK,
     connect,
+    flat_events,
     flat_frames,
     greet,
     make_client,
@@ -91,15 +92,19 @@ def _check_break_stream(stream: list[dict]) -> None:
     first_positions = {row[0]: row[1:3] for row in frames[0]["b"]}
     assert first_positions[0][0] > 635  # the cue ball left the head spot along +x
 
-    events = [m for m in stream if m["type"] == "event"]
+    event_messages = [m for m in stream if m["type"] == "event"]
+    events = flat_events(stream)
+    assert len(event_messages) < len(events)  # a break's contacts share messages (`also`)
     kinds = {e["kind"] for e in events}
     assert {"strike", "ball", "cushion"} <= kinds and "rest" not in kinds
     assert any(e["kind"] == "ball" and 0 in e["ids"] for e in events)
     event_ticks = [e["tick"] for e in events]
     assert event_ticks == sorted(event_ticks)
-    for e in events:  # each event comes before the first frame message at or after its tick
+    for e in event_messages:  # before the first frame message at or after its tick ...
         later = [f for f in messages if f["tick"] >= e["tick"]]
         assert not later or stream.index(e) < stream.index(later[0])
+        # ... with the events of at most one frame message's span (4 frames of 6 ticks)
+        assert all(0 <= a["tick"] - e["tick"] <= 25 for a in e.get("also", ()))
 
     result, state = stream[-2], stream[-1]
     outcome = result["outcome"]
@@ -186,5 +191,5 @@ def test_a_late_room_skips_stale_frames_but_never_events_or_the_last_frame(setti
     assert client.app.state.registry.metrics.frames_skipped >= per_second - 2  # in 1 s
     assert not any(stalled[0] < t < stalled[0] + 96 for t in ticks)  # skipped, not sent late
     assert frames[-1].get("last") is True
-    events = [m for m in stream if m["type"] == "event"]
+    events = flat_events(stream)
     assert len(events) > 20 and events[0]["kind"] == "strike"

@@ -122,8 +122,11 @@ export function reduce(state, msg, now = 0) {
       break;
     }
     case 'event':
-      effects.push({ kind: 'sound', sound: msg.kind, speed: msg.speed ?? 0, t: msg.t ?? 0,
-        shot: msg.shot });
+      // Sounds close together come in one message (`also`): each plays at its own `t`.
+      for (const e of [msg, ...(msg.also ?? [])]) {
+        effects.push({ kind: 'sound', sound: e.kind, speed: e.speed ?? 0, t: e.t ?? 0,
+          shot: msg.shot });
+      }
       break;
     case 'shot_result': {
       s.lastResult = msg;

@@ -187,3 +187,15 @@ test('groups as the rules send them (a list by seat) and a notice beside the out
   assert.deepEqual(ballsLeft(s, 1), [1]);
   assert.equal(s.outcome, 'Ben fouls. Ana declares a push out.');
 });
+
+test('an event message with `also` plays every sound at its own time', () => {
+  const { effects } = run([
+    [stateMsg(1)],
+    [{ type: 'event', seq: 2, shot: 7, tick: 1, t: 0.0, kind: 'strike', ids: [0], speed: 9,
+      target: -1, also: [{ tick: 10, t: 0.08, kind: 'ball', ids: [0, 1], speed: 8.5, target: -1 },
+        { tick: 20, t: 0.16, kind: 'cushion', ids: [3], speed: 2, target: 1 }] }],
+  ]);
+  const sounds = effects.filter((e) => e.kind === 'sound');
+  assert.deepEqual(sounds.map((e) => [e.sound, e.t, e.speed, e.shot]),
+    [['strike', 0, 9, 7], ['ball', 0.08, 8.5, 7], ['cushion', 0.16, 2, 7]]);
+});
