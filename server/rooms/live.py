@@ -108,11 +108,19 @@ class LiveRoom:
     def state_body(self) -> dict:
         return self.room.state_body(self.clock_info(), self.grace_info())
 
-    def state_payload(self) -> dict:
-        return {"type": "state", "seq": self.seq, **self.state_body()}
+    def state_text(self) -> str:
+        """`state_body` as JSON (without `type` and `seq`), the table's geometry spliced in
+        from its cached text: ~1.5 KB that never changes, encoded after every shot it was
+        ~0.15 ms of the loop each time."""
+        body = self.state_body()
+        del body["table"]
+        return f'{encode(body)[:-1]},"table":{self.room.table_json()}}}'
+
+    def send_state(self, conn: Connection) -> None:
+        conn.push(message_text("state", self.seq, self.state_text()))
 
     def broadcast_state(self) -> None:
-        self.broadcast({"type": "state", **self.state_body()})
+        self.broadcast_body("state", self.state_text())
 
     def broadcast_presence(self) -> None:
         self.broadcast({"type": "presence", "players": self.room.players_info(),
@@ -158,7 +166,7 @@ class LiveRoom:
                           "frame_every": self.settings.frame_every,
                           "frames_per_message": self.settings.frames_per_message,
                           "server_time": time.time()})
-        self.reply(conn, self.state_payload())
+        self.send_state(conn)
         self.broadcast_presence()
 
     def detach(self, conn: Connection) -> None:
@@ -211,7 +219,7 @@ class LiveRoom:
             case "ping":
                 self.reply(conn, {"type": "pong", "id": msg.id, "server_time": time.time()})
             case "sync":
-                self.reply(conn, self.state_payload())
+                self.send_state(conn)
             case "chat":
                 assert isinstance(msg, Chat)
                 text = "".join(ch if ch.isprintable() else " " for ch in msg.text).strip()

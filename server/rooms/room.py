@@ -19,7 +19,7 @@ from server.engine import BallSet, Shot, ShotResult, Table
 from server.rules import GAME_KINDS, Match, Outcome, RulesError
 
 from .errors import ActionError
-from .stream import BallRow, StreamFrames, Timed, frame_rows
+from .stream import BallRow, StreamFrames, Timed, encode, frame_rows
 from .tokens import hash_token, new_token, token_matches
 
 WAITING, AIMING, ROLLING, OVER = "waiting", "aiming", "rolling", "over"
@@ -30,6 +30,13 @@ def _table_dict(table: Table) -> dict:
     """A table never changes: its geometry goes into every `state`, built once. (The
     encoder only reads it.)"""
     return table.to_dict()
+
+
+@functools.lru_cache(maxsize=8)
+def _table_json(table: Table) -> str:
+    return encode(_table_dict(table))
+
+
 MAX_NAME = 24
 
 
@@ -172,7 +179,14 @@ class Room:
         return frame_rows(balls.ids, balls.positions, cels, balls.on_table)
 
     def table_dict(self) -> dict:
-        return _table_dict(self.match.game.table if self.match else Table.pool("9ft"))
+        return _table_dict(self._table())
+
+    def table_json(self) -> str:
+        """`table_dict` as JSON, encoded once per table."""
+        return _table_json(self._table())
+
+    def _table(self) -> Table:
+        return self.match.game.table if self.match else Table.pool("9ft")
 
     def state_body(self, clock: dict | None, grace: list[dict]) -> dict:
         """The `state` message without `type` and `seq`."""

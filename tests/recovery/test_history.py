@@ -30,9 +30,11 @@ def ws_until(ws, kind: str) -> list[dict]:
             return out
 
 
-def play_shot(players, spectator, state: dict, payload: dict) -> tuple[list[dict], dict]:
-    """The seat to act shoots (placing the cue ball first if it is in hand); returns what
-    the spectator saw of the shot and the `state` after it."""
+def play_shot(players, spectator, state: dict,
+              payload: dict) -> tuple[dict, list[dict], dict]:
+    """The seat to act shoots (placing the cue ball first if it is in hand); returns the
+    `state` the shot was taken from (after any placement), what the spectator saw of the
+    shot and the `state` after it."""
     match = state["match"]
     if match["decision"] is not None:
         seat = match["decision"]["seat"]
@@ -46,14 +48,14 @@ def play_shot(players, spectator, state: dict, payload: dict) -> tuple[list[dict
             reply = next(m for m in iter(shooter.receive_json, None)
                          if m["type"] in ("state", "error"))
             if reply["type"] == "state":
-                ws_until(spectator, "state")
+                state = ws_until(spectator, "state")[-1]
                 break
     if match["requires_call"]:
         shooter.send_json({"type": "call", "pocket": 0})
-        ws_until(spectator, "state")
+        state = ws_until(spectator, "state")[-1]
     shooter.send_json(payload)
     seen = ws_until(spectator, "state")
-    return seen[:-1], seen[-1]
+    return state, seen[:-1], seen[-1]
 
 
 def test_a_played_match_is_listed_detailed_and_replayed_exactly(settings, db_path: Path):
@@ -68,9 +70,10 @@ def test_a_played_match_is_listed_detailed_and_replayed_exactly(settings, db_pat
                 client.websocket_connect(url) as s:
             state = ws_until(s, "state")[-1]
             first_state = state
-            live = []
+            live, befores = [], []
             for payload in SHOTS:
-                seen, state = play_shot((a, b), s, state, payload)
+                before, seen, state = play_shot((a, b), s, state, payload)
+                befores.append(before)
                 live.append((seen, state))
             conceder = state["match"]["turn"]
             (a, b)[conceder].send_json({"type": "concede"})
@@ -94,9 +97,9 @@ def test_a_played_match_is_listed_detailed_and_replayed_exactly(settings, db_pat
         assert detail["games"][0]["winner"] == 1 - conceder
         shots = detail["shots"]
         assert [s["n"] for s in shots] == [1, 2, 3]
-        # what a replay draws: the table as `state` gives it and the balls before each shot
+        # what a replay draws: the table as `state` gives it and the balls each shot was taken
+        # from (after any ball-in-hand placement)
         assert detail["geometry"] == first_state["table"]
-        befores = [first_state] + [after for _, after in live[:-1]]
         assert [stored["b"] for stored in shots] == [st["balls"] for st in befores]
         for stored, payload, (seen, after) in zip(shots, SHOTS, live, strict=True):
             result = next(m for m in seen if m["type"] == "shot_result")
