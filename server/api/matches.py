@@ -3,14 +3,13 @@ and the replay of a stored shot streamed like the live one (NDJSON, paced in rea
 
 from __future__ import annotations
 
-import math
 from typing import Annotated, Literal
 
 from fastapi import APIRouter, HTTPException, Query, Request
 from fastapi.responses import StreamingResponse
 from pydantic import BaseModel
 
-from server.engine import BallSet, MotionState, Table
+from server.engine import BallSet, Table
 from server.store import Database
 from server.store.replay import stream_replay
 
@@ -111,21 +110,12 @@ async def show_match(match_id: int, request: Request) -> dict:
             "geometry": geometry}
 
 
-CELS = 16  # sprite cels per turn, as the stream counts them
-
-
 def _resting_rows(balls: dict) -> list[list[int]]:
     """The stored balls (exact floats) in the stream's integer rows, cel from the roll."""
     state = BallSet.from_dict(balls)
-    rows = []
-    for i, (x, y), st, phase in zip(state.ids.tolist(), state.positions.tolist(),
-                                    state.states.tolist(), state.phases.tolist(), strict=True):
-        if st == MotionState.POCKETED:
-            continue
-        turns = phase / (2 * math.pi)
-        cel = int(math.floor((turns - math.floor(turns)) * CELS)) % CELS
-        rows.append([i, round(x * 1000), round(y * 1000), cel])
-    return rows
+    return [[i, round(x * 1000), round(y * 1000), cel] for i, (x, y), cel, on in zip(
+        state.ids.tolist(), state.positions.tolist(), state.cels().tolist(),
+        state.on_table.tolist(), strict=True) if on]
 
 
 @router.get("/api/matches/{match_id}/shots/{n}/replay", responses={

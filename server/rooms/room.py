@@ -13,8 +13,6 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 
-import numpy as np
-
 from server.engine import BallSet, Shot, ShotResult, Table
 from server.rules import GAME_KINDS, Match, Outcome, RulesError
 
@@ -85,7 +83,6 @@ class Room:
     shots_played: int = field(default=0, init=False)
     rematch_votes: set[int] = field(default_factory=set, init=False)
     spectators: int = field(default=0, init=False)
-    _cels: dict[int, int] = field(default_factory=dict, init=False)
 
     def __post_init__(self) -> None:
         if self.game not in GAME_KINDS:
@@ -175,8 +172,7 @@ class Room:
         if self.match is None:
             return []
         balls: BallSet = self.match.game.balls
-        cels = np.array([self._cels.get(int(i), 0) for i in balls.ids.tolist()], dtype=int)
-        return frame_rows(balls.ids, balls.positions, cels, balls.on_table)
+        return frame_rows(balls.ids, balls.positions, balls.cels(), balls.on_table)
 
     def table_dict(self) -> dict:
         return _table_dict(self._table())
@@ -246,14 +242,11 @@ class Room:
         self.shot = None
 
     def show(self, timed: Timed, frames: StreamFrames) -> None:
-        """The stream has reached `timed`: remember what a member joining now must see,
-        and after the last frame the cel each ball stopped on."""
+        """The stream has reached `timed`: remember what a member joining now must see."""
         if self.shot is None or timed.frame is None:
             return
         self.shot.shown = (frames, timed.frame)
         self.shot.tick = timed.tick
-        if not timed.droppable:  # the last frame
-            self._cels.update((row[0], row[3]) for row in frames.rows(timed.frame))
 
     def end_shot(self) -> None:
         self.shot = None
@@ -264,7 +257,6 @@ class Room:
         match = self.match
         if match is not None and match.game.over and not match.over:
             match.next_game()
-            self._cels.clear()
 
     def place_cue(self, seat: int | None, x: float, y: float) -> None:
         match = self._require_player(seat)
@@ -292,7 +284,6 @@ class Room:
             raise ActionError("not_practice", "Only a practice table can be racked again.")
         with _rules():
             match.game.rerack()
-        self._cels.clear()
 
     def check_aim(self, seat: int | None) -> None:
         match = self._require_player(seat)
@@ -329,7 +320,6 @@ class Room:
             return False
         self.match.rematch()
         self.rematch_votes.clear()
-        self._cels.clear()
         return True
 
 

@@ -31,7 +31,6 @@ def room_to_dict(room: Room, match_id: int | None, pending: PendingShot | None =
         "match_id": match_id,
         "shots_played": shots_played,
         "rematch_votes": sorted(room.rematch_votes),
-        "cels": sorted([int(k), int(v)] for k, v in room._cels.items()),
         "pending": None if pending is None else {
             "id": pending.id, "seat": pending.seat, "angle": pending.angle,
             "speed": pending.speed, "tip": list(pending.tip)},
@@ -55,7 +54,6 @@ def room_from_dict(data: dict) -> tuple[Room, int | None, PendingShot | None]:
     room.match = Match.from_dict(data["match"]) if data["match"] is not None else None
     room.shots_played = data["shots_played"]
     room.rematch_votes = set(data["rematch_votes"])
-    room._cels = {k: v for k, v in data["cels"]}
     p = data["pending"]
     pending = None if p is None else PendingShot(p["id"], p["seat"], p["angle"], p["speed"],
                                                  (p["tip"][0], p["tip"][1]))

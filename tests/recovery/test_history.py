@@ -5,6 +5,7 @@ equals the live stream message for message and the engine's result bit for bit."
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 import pytest
@@ -163,3 +164,28 @@ def test_unknown_match_and_shot_are_404_and_bad_queries_422(settings, db_path: P
         assert client.get("/api/matches?limit=0").status_code == 422
         assert client.get("/api/matches?status=lost").status_code == 422
         assert client.get("/api/matches/1/shots/1/replay?pace=nan").status_code == 422
+
+
+def test_a_ball_moved_by_the_rules_shows_one_cel_live_and_stored(settings, db_path: Path):
+    """A re-spotted ball was never in a frame where it now lies: the live `state` and the
+    stored table both draw its cel from the angle it rolled (its phase)."""
+    with TestClient(app_on(settings, db_path)) as client:
+        room_id = client.post("/api/rooms", json={"game": "eight_ball", "race_to": 1}
+                              ).json()["room_id"]
+        tokens = [client.post(f"/api/rooms/{room_id}/join", json={"name": n}).json()["token"]
+                  for n in ("Ana", "Ben")]
+        balls = client.app.state.registry.get(room_id).room.match.game.balls
+        balls.phases[balls.index(8)] = 2.5  # rolled 2.5 rad, then spotted by the rules
+        url = f"/ws/rooms/{room_id}"
+        with client.websocket_connect(f"{url}?token={tokens[0]}") as a, \
+                client.websocket_connect(f"{url}?token={tokens[1]}") as b, \
+                client.websocket_connect(url) as s:
+            ws_until(s, "state")
+            s.send_json({"type": "sync"})
+            state = ws_until(s, "state")[-1]
+            before, _, _ = play_shot((a, b), s, state, SHOTS[0])
+        eight = next(row for row in before["balls"] if row[0] == 8)
+        assert eight[3] == int(2.5 / (2 * math.pi) * 16)  # cel 6 of 16
+        match_id = client.get("/api/matches").json()["matches"][0]["id"]
+        stored = client.get(f"/api/matches/{match_id}").json()["shots"][0]
+        assert stored["b"] == before["balls"]
