@@ -17,9 +17,9 @@ def uvicorn_config(app: object, host: str, port: int, settings: Settings,
                    **extra: object) -> uvicorn.Config:
     """WebSocket limits set explicitly (uvicorn's defaults are 16 MiB and 20 s/20 s).
 
-    permessage-deflate (`POOL_WS_DEFLATE`, on by default): a break costs a client
-    ~1.8 KB/s with it, ~7.6 KB/s without (`python -m bench.stream`), for more server CPU
-    per message and client (docs/performance.md).
+    permessage-deflate (`POOL_WS_DEFLATE=1`, off by default): a break costs a client
+    ~1.5 KB/s with it, ~7.0 KB/s without (`python -m bench.stream`), for ~45 % more server
+    CPU at 200 rooms (docs/performance.md).
     """
     return uvicorn.Config(app, host=host, port=port, ws_max_size=settings.max_message,
                           ws_ping_interval=settings.ws_ping_interval,

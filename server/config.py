@@ -41,7 +41,9 @@ class Settings:
     rate_burst: float = 40.0  # token bucket per connection: burst ...
     rate_per_second: float = 20.0  # ... and sustained messages per second
     ws_ping_interval: float = 20.0
-    ws_deflate: bool = True  # permessage-deflate: ~5x less bandwidth, more server CPU
+    # permessage-deflate: ~5x less bandwidth, but ~45 % more server CPU at 200 rooms, which
+    # cost the lateness goal there (docs/performance.md); 6.6 KB/s a client without it
+    ws_deflate: bool = False
     ws_ping_timeout: float = 20.0
 
     web_dir: Path = field(default=REPO_ROOT / "web")

@@ -121,3 +121,23 @@ async def play(address: str) -> None:
 def test_real_server_plays_shots_with_reconnection_mid_shot(settings):
     with live_server(replace(settings, pace=1.0)) as address:
         asyncio.run(play(address))
+
+
+async def spectate_offering_deflate(address: str) -> tuple[str | None, dict]:
+    """A spectator that offers permessage-deflate, as browsers do: the extensions the server
+    accepted, and the `state` it then read."""
+    async with httpx.AsyncClient(base_url=f"http://{address}") as http:
+        room_id = (await http.post("/api/rooms", json={"game": "practice"})).json()["room_id"]
+    async with websockets.connect(f"ws://{address}/ws/rooms/{room_id}",
+                                  compression="deflate") as ws:
+        _, state = await greet(ws)
+        return ws.response.headers.get("Sec-WebSocket-Extensions"), state
+
+
+@pytest.mark.parametrize("deflate", [False, True])
+def test_permessage_deflate_is_accepted_only_when_enabled(settings, deflate):
+    with live_server(replace(settings, ws_deflate=deflate)) as address:
+        extensions, state = asyncio.run(spectate_offering_deflate(address))
+    assert ("permessage-deflate" in (extensions or "")) is deflate
+    assert state["room"]["game"] == "practice"
+    assert state["table"]["length"] == pytest.approx(2.54)

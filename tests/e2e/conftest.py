@@ -6,19 +6,16 @@ with shots paced twice as fast as real time so the break takes a few seconds to 
 
 from __future__ import annotations
 
-import threading
-import time
 from collections.abc import Callable, Iterator
 from dataclasses import replace
 from pathlib import Path
 
 import pytest
-import uvicorn
 from playwright.sync_api import Browser, BrowserContext, Page, sync_playwright
 
-from server.__main__ import uvicorn_config
 from server.app import create_app
 from server.config import Settings
+from server.embedded import bound_socket, serving
 from server.engine import Shot, Table, rack, simulate
 
 ARTIFACTS = Path(__file__).resolve().parents[2] / "artifacts"
@@ -32,20 +29,8 @@ def base_url() -> Iterator[str]:
     table = Table.pool("9ft")
     simulate(table, rack("eight_ball", table), Shot(0.0, 1.0))
     settings = replace(E2E_SETTINGS)
-    config = uvicorn_config(create_app(settings), "127.0.0.1", 0, settings,
-                            log_level="warning")
-    server = uvicorn.Server(config)
-    thread = threading.Thread(target=server.run, daemon=True)
-    thread.start()
-    deadline = time.monotonic() + 30
-    while not server.started:
-        if time.monotonic() > deadline or not thread.is_alive():
-            raise RuntimeError("the test server did not start")
-        time.sleep(0.02)
-    port = server.servers[0].sockets[0].getsockname()[1]
-    yield f"http://127.0.0.1:{port}"
-    server.should_exit = True
-    thread.join(timeout=10)
+    with serving(create_app(settings), settings, bound_socket()) as address:
+        yield f"http://{address}"
 
 
 @pytest.fixture(scope="package")
