@@ -12,7 +12,8 @@ from enum import IntEnum
 
 import numpy as np
 
-from .params import DEFAULT_PARAMS
+from .params import DEFAULT_PARAMS, PhysicsParams
+from .physics.tick import cels_of
 
 CUE = 0
 MAX_BALL_ID = 15
@@ -96,12 +97,13 @@ class BallSet:
         """No ball translates any more."""
         return not bool(self.moving.any())
 
-    def cels(self, n_cels: int = DEFAULT_PARAMS.cels) -> np.ndarray:
-        """(N,) int: the sprite cel each ball shows, from the angle it has rolled: the
-        numbers a shot's frames carry (`physics.tick.cels_of`), so a table at rest, a
-        re-spotted ball and a stored table all show the cel their roll gives."""
-        turns = self.phases / (2.0 * np.pi)
-        return (np.floor((turns - np.floor(turns)) * n_cels).astype(np.int64)) % n_cels
+    def cels(self, params: PhysicsParams = DEFAULT_PARAMS) -> np.ndarray:
+        """(N,) int: the sprite cel each ball shows, from the angle it has rolled, by the
+        kernel that numbers a shot's frames: a table at rest, a re-spotted ball and a
+        stored table all show the cel their roll gives."""
+        out = np.empty(len(self), dtype=np.int64)
+        cels_of(self.phases, self.states, out, params.array())
+        return out
 
     def position_of(self, ball_id: int) -> tuple[float, float]:
         x, y = self.positions[self.index(ball_id)]
