@@ -10,6 +10,7 @@ from fastapi.responses import StreamingResponse
 from pydantic import BaseModel
 
 from server.engine import BallSet, Table
+from server.rooms.stream import BallRow, frame_rows
 from server.store import Database
 from server.store.replay import stream_replay
 
@@ -110,12 +111,10 @@ async def show_match(match_id: int, request: Request) -> dict:
             "geometry": geometry}
 
 
-def _resting_rows(balls: dict) -> list[list[int]]:
+def _resting_rows(balls: dict) -> list[BallRow]:
     """The stored balls (exact floats) in the stream's integer rows, cel from the roll."""
     state = BallSet.from_dict(balls)
-    return [[i, round(x * 1000), round(y * 1000), cel] for i, (x, y), cel, on in zip(
-        state.ids.tolist(), state.positions.tolist(), state.cels().tolist(),
-        state.on_table.tolist(), strict=True) if on]
+    return frame_rows(state.ids, state.positions, state.cels(), state.on_table)
 
 
 @router.get("/api/matches/{match_id}/shots/{n}/replay", responses={

@@ -31,6 +31,15 @@ def ws_until(ws, kind: str) -> list[dict]:
             return out
 
 
+def seated_match(client: TestClient) -> tuple[str, list[str]]:
+    """An 8-ball race to 1 with Ana and Ben seated: the room id and their tokens."""
+    room_id = client.post("/api/rooms", json={"game": "eight_ball", "race_to": 1}
+                          ).json()["room_id"]
+    tokens = [client.post(f"/api/rooms/{room_id}/join", json={"name": n}).json()["token"]
+              for n in ("Ana", "Ben")]
+    return room_id, tokens
+
+
 def play_shot(players, spectator, state: dict,
               payload: dict) -> tuple[dict, list[dict], dict]:
     """The seat to act shoots (placing the cue ball first if it is in hand); returns the
@@ -61,10 +70,7 @@ def play_shot(players, spectator, state: dict,
 
 def test_a_played_match_is_listed_detailed_and_replayed_exactly(settings, db_path: Path):
     with TestClient(app_on(settings, db_path)) as client:
-        room = client.post("/api/rooms", json={"game": "eight_ball", "race_to": 1}).json()
-        room_id = room["room_id"]
-        tokens = [client.post(f"/api/rooms/{room_id}/join", json={"name": n}).json()["token"]
-                  for n in ("Ana", "Ben")]
+        room_id, tokens = seated_match(client)
         url = f"/ws/rooms/{room_id}"
         with client.websocket_connect(f"{url}?token={tokens[0]}") as a, \
                 client.websocket_connect(f"{url}?token={tokens[1]}") as b, \
@@ -170,10 +176,7 @@ def test_a_ball_moved_by_the_rules_shows_one_cel_live_and_stored(settings, db_pa
     """A re-spotted ball was never in a frame where it now lies: the live `state` and the
     stored table both draw its cel from the angle it rolled (its phase)."""
     with TestClient(app_on(settings, db_path)) as client:
-        room_id = client.post("/api/rooms", json={"game": "eight_ball", "race_to": 1}
-                              ).json()["room_id"]
-        tokens = [client.post(f"/api/rooms/{room_id}/join", json={"name": n}).json()["token"]
-                  for n in ("Ana", "Ben")]
+        room_id, tokens = seated_match(client)
         balls = client.app.state.registry.get(room_id).room.match.game.balls
         balls.phases[balls.index(8)] = 2.5  # rolled 2.5 rad, then spotted by the rules
         url = f"/ws/rooms/{room_id}"
