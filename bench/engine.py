@@ -19,7 +19,7 @@ import subprocess
 import sys
 import time
 
-from server.engine import Shot, Table, rack, simulate
+from server.engine import ENGINE_VERSION, TICK_HZ, Shot, Table, rack, simulate
 
 POOLTOOL_SCRIPT = r"""
 import json, statistics, sys, time
@@ -77,10 +77,16 @@ def ours(runs: int, seed: int) -> dict:
         result = simulate(table, balls, shot)
         times.append(time.perf_counter() - t0)
     assert result is not None
-    return {"warm_s": warm, "median_ms": statistics.median(times) * 1e3,
-            "min_ms": min(times) * 1e3, "max_ms": max(times) * 1e3,
-            "ticks": len(result.frames), "events": len(result.events),
-            "seconds": result.duration, "pocketed": result.pocketed()}
+    return {
+        "warm_s": warm,
+        "median_ms": statistics.median(times) * 1e3,
+        "min_ms": min(times) * 1e3,
+        "max_ms": max(times) * 1e3,
+        "ticks": len(result.frames),
+        "events": len(result.events),
+        "seconds": result.duration,
+        "pocketed": result.pocketed(),
+    }
 
 
 def pooltool(runs: int, python: str | None) -> dict | None:
@@ -91,8 +97,12 @@ def pooltool(runs: int, python: str | None) -> dict | None:
         except ImportError:
             return None
         interpreter = sys.executable
-    out = subprocess.run([interpreter, "-c", POOLTOOL_SCRIPT, str(runs), "10.0"],
-                         capture_output=True, text=True, timeout=900)
+    out = subprocess.run(
+        [interpreter, "-c", POOLTOOL_SCRIPT, str(runs), "10.0"],
+        capture_output=True,
+        text=True,
+        timeout=900,
+    )
     if out.returncode != 0:
         print(out.stderr[-2000:], file=sys.stderr)
         return None
@@ -106,25 +116,37 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--pooltool-python", default=os.environ.get("POOLTOOL_PYTHON"))
     args = parser.parse_args(argv)
     r = ours(args.runs, args.seed)
-    print(f"engine: 8-ball break, 10 m/s centre hit at the apex, seed {args.seed}, "
-          f"{args.runs} runs")
+    print(
+        f"engine {ENGINE_VERSION}: 8-ball break, 10 m/s centre hit at the apex, "
+        f"seed {args.seed}, {args.runs} runs"
+    )
     print(f"  first call (numba compile or cache load): {r['warm_s'] * 1e3:.0f} ms")
-    print(f"  simulate to rest, frames included: median {r['median_ms']:.2f} ms "
-          f"(min {r['min_ms']:.2f}, max {r['max_ms']:.2f})")
-    print(f"  {r['ticks']} ticks of 1/120 s ({r['seconds']:.2f} s of play), "
-          f"{r['events']} events, pocketed {r['pocketed']}")
+    print(
+        f"  simulate to rest, frames included: median {r['median_ms']:.2f} ms "
+        f"(min {r['min_ms']:.2f}, max {r['max_ms']:.2f})"
+    )
+    print(
+        f"  {r['ticks']} ticks of 1/{TICK_HZ} s ({r['seconds']:.2f} s of play), "
+        f"{r['events']} events, pocketed {r['pocketed']}"
+    )
     pt = pooltool(max(5, args.runs // 2), args.pooltool_python)
     if pt is None:
         print("pooltool: not installed (pip install .[compare], or --pooltool-python PATH)")
         return
     total = pt["sim_ms"] + pt["continuize_ms"]
-    print(f"pooltool {pt['version']}: same break (stick speed {pt['V0']:.2f} m/s gives the cue "
-          f"ball {pt['cue_speed']:.2f} m/s), first call {pt['warm_s']:.1f} s")
-    print(f"  simulate median {pt['sim_ms']:.2f} ms + continuize at 1/120 s "
-          f"{pt['continuize_ms']:.2f} ms = {total:.2f} ms; {pt['events']:.0f} events, "
-          f"{pt['seconds']:.2f} s of play")
-    print(f"  ratio pooltool / ours: {total / r['median_ms']:.1f}x "
-          f"(simulate only: {pt['sim_ms'] / r['median_ms']:.1f}x)")
+    print(
+        f"pooltool {pt['version']}: same break (stick speed {pt['V0']:.2f} m/s gives the cue "
+        f"ball {pt['cue_speed']:.2f} m/s), first call {pt['warm_s']:.1f} s"
+    )
+    print(
+        f"  simulate median {pt['sim_ms']:.2f} ms + continuize at 1/120 s "
+        f"{pt['continuize_ms']:.2f} ms = {total:.2f} ms; {pt['events']:.0f} events, "
+        f"{pt['seconds']:.2f} s of play"
+    )
+    print(
+        f"  ratio pooltool / ours: {total / r['median_ms']:.1f}x "
+        f"(simulate only: {pt['sim_ms'] / r['median_ms']:.1f}x)"
+    )
 
 
 if __name__ == "__main__":

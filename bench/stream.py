@@ -15,7 +15,6 @@ import asyncio
 import json
 import statistics
 import tempfile
-from dataclasses import replace
 from pathlib import Path
 
 import httpx
@@ -76,7 +75,7 @@ def main() -> None:
           f"{'frames':>7}")
     for every, per_message in ((2, 1), (4, 1), (6, 1), (6, 2), (6, 4)):
         # pace 2: fast enough, and never so fast that the room skips stale frames
-        settings = replace(Settings(), frame_every=every, frames_per_message=per_message,
+        settings = Settings().replace(frame_every=every, frames_per_message=per_message,
                            pace=2.0, ws_deflate=True)
         scratch = Path(tempfile.mkdtemp(prefix="bench-stream-")) / "billiards.db"
         app = create_app(settings, store=Database(scratch))  # not the game's database

@@ -5,16 +5,17 @@ from __future__ import annotations
 import argparse
 import gc
 import logging
+from typing import Any
 
 import uvicorn
 
 from server.app import create_app
-from server.config import Settings
+from server.config import Settings, SettingsError
 from server.rooms.prepare import warm_up
 
 
-def uvicorn_config(app: object, host: str, port: int, settings: Settings,
-                   **extra: object) -> uvicorn.Config:
+def uvicorn_config(app: Any, host: str, port: int, settings: Settings,
+                   **extra: Any) -> uvicorn.Config:
     """WebSocket limits set explicitly (uvicorn's defaults are 16 MiB and 20 s/20 s).
 
     permessage-deflate (`POOL_WS_DEFLATE=1`, off by default): a break costs a client
@@ -35,7 +36,10 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--log-level", default="info")
     args = parser.parse_args(argv)
     logging.basicConfig(level=args.log_level.upper())
-    settings = Settings.from_env()
+    try:
+        settings = Settings.from_env()
+    except SettingsError as exc:
+        parser.error(str(exc))
     config = uvicorn_config(create_app(settings), args.host, args.port, settings,
                             log_level=args.log_level)
     warm_up(settings.frame_every)

@@ -15,26 +15,29 @@ from server.api.http import router as http_router
 from server.api.matches import router as matches_router
 from server.api.ws import router as ws_router
 from server.config import Settings
-from server.rooms import RoomRegistry
+from server.rooms import Clock, RoomRegistry, SeedSource, StoreObserver
+from server.rooms.clock import SYSTEM_CLOCK
 from server.rooms.observer import RoomObserver
-from server.store import Database, StoreObserver, default_db_path
-from server.store.restore import restore_rooms
+from server.store import Database
 
 CLOSE_RESTART = 1012
 
 
 def create_app(settings: Settings | None = None,
                observer: RoomObserver | None = None,
-               store: Database | None = None) -> FastAPI:
+               store: Database | None = None,
+               clock: Clock = SYSTEM_CLOCK,
+               seeds: SeedSource | None = None) -> FastAPI:
     """Build the app. `settings` defaults to `Settings.from_env()`. `store` is the SQLite
-    history and room store (default: the file in `BILLIARDS_DB`, else `./billiards.db`);
-    its `StoreObserver` is told about every shot and room change unless `observer` is given.
+    history and room store (default: the file at `settings.db_path`); its `StoreObserver`
+    is told about every shot and room change unless `observer` is given. `clock` and
+    `seeds` (the rack seeds of new rooms) are for tests that need a fixed game.
     The lifespan restores the saved rooms on start and keeps them on shutdown."""
     settings = settings or Settings.from_env()
-    store = store or Database(default_db_path())
+    store = store or Database(settings.db_path)
     if observer is None:
         observer = StoreObserver(store)
-    registry = RoomRegistry(settings, observer)
+    registry = RoomRegistry(settings, observer, clock=clock, seeds=seeds)
 
     @contextlib.asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
@@ -42,7 +45,7 @@ def create_app(settings: Settings | None = None,
         store.open()
         if isinstance(observer, StoreObserver):
             observer.start()
-            restore_rooms(store, registry, settings, observer)
+            registry.restore(await store.call(lambda repo: repo.rooms()))
         background = [asyncio.create_task(registry.run_sweeper()),
                       asyncio.create_task(registry.run_watchdog())]
         try:

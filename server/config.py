@@ -1,73 +1,152 @@
-"""Server settings: one frozen object handed to the app, so tests can shrink every clock.
+"""Server settings: one frozen, validated object handed to the app, so tests can shrink every
+clock and a typo in the environment stops the server with the variable's name.
 
-Defaults are the production values; `Settings.from_env()` reads `POOL_*` overrides.
+Defaults are the production values. `Settings(...)` takes only what it is given;
+`Settings.from_env()` reads `POOL_*` overrides (pydantic-settings), e.g. `POOL_GRACE=30`,
+`POOL_ALLOWED_ORIGINS=https://a.example,https://b.example`, `POOL_DB_PATH=/data/pool.db`
+(`BILLIARDS_DB` is still read as the database path's older name).
 """
 
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass, field, replace
+from collections.abc import Mapping
+from contextvars import ContextVar
 from pathlib import Path
+from typing import Annotated, Any
+
+from pydantic import AliasChoices, Field, ValidationError, field_validator
+from pydantic.fields import FieldInfo
+from pydantic_settings import (
+    BaseSettings,
+    EnvSettingsSource,
+    NoDecode,
+    PydanticBaseSettingsSource,
+    SettingsConfigDict,
+)
+from pydantic_settings.sources.utils import parse_env_vars
 
 KIB = 1024
 REPO_ROOT = Path(__file__).resolve().parent.parent
+ENV_PREFIX = "POOL_"
+_environment: ContextVar[Mapping[str, str] | None] = ContextVar("pool_environment",
+                                                                default=None)
 
 
-@dataclass(frozen=True)
-class Settings:
+class SettingsError(ValueError):
+    """A setting from the environment is missing its mark; the message names the variable."""
+
+
+class _MappingEnvSource(EnvSettingsSource):
+    """The environment source, reading a given mapping instead of `os.environ`."""
+
+    def __init__(self, settings_cls: type[BaseSettings], env: Mapping[str, str]) -> None:
+        self._mapping = env
+        super().__init__(settings_cls)
+
+    def _load_env_vars(self) -> Mapping[str, str | None]:
+        return parse_env_vars(self._mapping, self.case_sensitive, self.env_ignore_empty,
+                              self.env_parse_none_str)
+
+
+Seconds = Annotated[float, Field(ge=0.0, le=86_400.0)]
+PositiveSeconds = Annotated[float, Field(gt=0.0, le=86_400.0)]
+
+
+class Settings(BaseSettings):
     """Clocks in seconds, sizes in bytes or messages."""
 
-    shot_clock: float = 60.0  # default per room; a room may set its own
-    min_shot_clock: float = 5.0  # smallest non-zero clock a room may ask for
-    max_shot_clock: float = 600.0
-    grace: float = 60.0  # a dropped player keeps the seat this long
-    idle_ttl: float = 30 * 60.0  # a room nobody is connected to expires after this
-    waiting_ttl: float = 10 * 60.0  # ... or after this if nobody ever joined
-    sweep_interval: float = 30.0
-    max_rooms: int = 2000
+    model_config = SettingsConfigDict(env_prefix=ENV_PREFIX, frozen=True, extra="forbid",
+                                      populate_by_name=True)
 
-    tick_hz: int = 120  # the engine's tick (DEFAULT_TICK = 1/120)
-    frame_every: int = 6  # send every 6th tick: 20 frames/s (see docs/protocol.md)
-    frames_per_message: int = 4  # ... in 5 `frame` messages/s, each with 3 frames ahead
-    # Processes that simulate shots; 0 (default): threads of this process. On this 2-core
+    shot_clock: Annotated[float, Field(ge=0.0, le=600.0)] = 60.0  # a room may set its own
+    min_shot_clock: Annotated[float, Field(gt=0.0, le=600.0)] = 5.0  # smallest non-zero clock
+    max_shot_clock: Annotated[float, Field(gt=0.0, le=600.0)] = 600.0
+    grace: Seconds = 60.0  # a dropped player keeps the seat this long
+    idle_ttl: PositiveSeconds = 30 * 60.0  # a room nobody is connected to expires after this
+    waiting_ttl: PositiveSeconds = 10 * 60.0  # ... or after this if nobody ever joined
+    sweep_interval: PositiveSeconds = 30.0
+    max_rooms: Annotated[int, Field(ge=1, le=1_000_000)] = 2000
+
+    # The engine ticks at a fixed 120 Hz; a frame is sent every `frame_every` ticks (6: 20
+    # frames/s), `frames_per_message` frames to a message (the first now, the rest ahead).
+    frame_every: Annotated[int, Field(ge=1, le=120)] = 6
+    frames_per_message: Annotated[int, Field(ge=1, le=32)] = 4
+    # Processes that simulate shots; 0 (default): threads of this process. On a 2-core
     # machine one worker process was slower under load (docs/performance.md).
-    shot_workers: int = 0
-    pace: float = 1.0  # playback speed-up (tests only; 1.0 is real time)
+    shot_workers: Annotated[int, Field(ge=0, le=64)] = 0
+    pace: Annotated[float, Field(gt=0.0, le=1000.0)] = 1.0  # playback speed-up (tests)
 
-    allowed_origins: tuple[str, ...] = ()  # beside same-origin; "*" allows any
-    max_message: int = 16 * KIB
-    send_queue: int = 64  # messages waiting for one client
-    send_timeout: float = 5.0  # a client that cannot take what is queued in this long is dropped
-    rate_burst: float = 40.0  # token bucket per connection: burst ...
-    rate_per_second: float = 20.0  # ... and sustained messages per second
-    ws_ping_interval: float = 20.0
+    allowed_origins: Annotated[tuple[str, ...], NoDecode] = ()  # beside same-origin; "*": any
+    max_message: Annotated[int, Field(ge=256, le=1024 * KIB)] = 16 * KIB
+    send_queue: Annotated[int, Field(ge=4, le=100_000)] = 64  # messages waiting for a client
+    # A client that cannot take what is queued for this long is dropped.
+    send_timeout: PositiveSeconds = 5.0
+    rate_burst: Annotated[float, Field(ge=1.0, le=10_000.0)] = 40.0  # token bucket per socket
+    rate_per_second: Annotated[float, Field(gt=0.0, le=10_000.0)] = 20.0
+    ws_ping_interval: PositiveSeconds = 20.0
+    ws_ping_timeout: PositiveSeconds = 20.0
     # permessage-deflate: ~5x less bandwidth, but ~45 % more server CPU at 200 rooms, which
-    # cost the lateness goal there (docs/performance.md); 6.6 KB/s a client without it
+    # cost the lateness goal there (docs/performance.md); 6.6 KB/s a client without it.
     ws_deflate: bool = False
-    ws_ping_timeout: float = 20.0
 
-    web_dir: Path = field(default=REPO_ROOT / "web")
+    web_dir: Path = REPO_ROOT / "web"
+    db_path: Path = Field(default=Path("billiards.db"),
+                          validation_alias=AliasChoices("db_path", "POOL_DB_PATH", "BILLIARDS_DB"))
+
+    @field_validator("allowed_origins", mode="before")
+    @classmethod
+    def _comma_list(cls, value: Any) -> Any:
+        if isinstance(value, str):
+            return tuple(o.strip() for o in value.split(",") if o.strip())
+        return value
 
     @classmethod
-    def from_env(cls, env: dict[str, str] | None = None) -> Settings:
-        """Defaults overridden by `POOL_SHOT_CLOCK`, `POOL_GRACE`, `POOL_ALLOWED_ORIGINS`..."""
-        env = dict(os.environ if env is None else env)
-        base = cls()
-        changes: dict[str, object] = {}
-        for name, value in vars(base).items():
-            raw = env.get(f"POOL_{name.upper()}")
-            if raw is None:
-                continue
-            if isinstance(value, bool):
-                changes[name] = raw.strip().lower() in ("1", "true", "yes", "on")
-            elif isinstance(value, tuple):
-                changes[name] = tuple(o.strip() for o in raw.split(",") if o.strip())
-            elif isinstance(value, Path):
-                changes[name] = Path(raw)
-            else:
-                changes[name] = type(value)(raw)
-        return replace(base, **changes)
+    def settings_customise_sources(cls, settings_cls: type[BaseSettings],
+                                   init_settings: PydanticBaseSettingsSource,
+                                   env_settings: PydanticBaseSettingsSource,
+                                   dotenv_settings: PydanticBaseSettingsSource,
+                                   file_secret_settings: PydanticBaseSettingsSource,
+                                   ) -> tuple[PydanticBaseSettingsSource, ...]:
+        """Only `from_env` reads the environment: `Settings(...)` in a test is exactly what
+        it says, whatever the shell it runs in has set."""
+        env = _environment.get()
+        if env is None:
+            return (init_settings,)
+        return (init_settings, _MappingEnvSource(settings_cls, env))
 
-    @property
-    def tick(self) -> float:
-        return 1.0 / self.tick_hz
+    @classmethod
+    def from_env(cls, env: Mapping[str, str] | None = None) -> Settings:
+        """Defaults overridden by `POOL_*` variables (of `env`, else the process's);
+        raises `SettingsError` naming each variable that is wrong."""
+        token = _environment.set(os.environ if env is None else env)
+        try:
+            return cls()
+        except ValidationError as exc:
+            raise SettingsError(_explain(exc, os.environ if env is None else env)) from None
+        finally:
+            _environment.reset(token)
+
+    def replace(self, **changes: Any) -> Settings:
+        """A copy with `changes`, validated like the rest."""
+        return type(self)(**{**self.model_dump(), **changes})
+
+
+def env_names(name: str, field: FieldInfo) -> list[str]:
+    """The environment variables that set field `name`."""
+    alias = field.validation_alias
+    if isinstance(alias, AliasChoices):
+        return [str(c) for c in alias.choices if str(c).upper() == str(c)]
+    return [f"{ENV_PREFIX}{name.upper()}"]
+
+
+def _explain(exc: ValidationError, env: Mapping[str, str]) -> str:
+    lines = []
+    for error in exc.errors(include_url=False):
+        name = str(error["loc"][0]) if error["loc"] else ""
+        field = Settings.model_fields.get(name)
+        names = env_names(name, field) if field is not None else [name]
+        variable = next((n for n in names if n in env), names[0])
+        shown = f"{variable}={env[variable]!r}" if variable in env else variable
+        lines.append(f"{shown}: {error['msg']}")
+    return "invalid settings: " + "; ".join(lines)

@@ -8,6 +8,7 @@ import threading
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
+from typing import Any
 
 import uvicorn
 
@@ -16,7 +17,7 @@ from server.config import Settings
 
 
 @contextmanager
-def serving(app: object, settings: Settings, sock: socket.socket,
+def serving(app: Any, settings: Settings, sock: socket.socket,
             timeout: float = 30.0) -> Iterator[str]:
     """Serve `app` on the bound socket `sock` (closed afterwards); yields "host:port".
     Stopping runs the app's shutdown (sockets closed with 1012, the store flushed)."""

@@ -8,9 +8,9 @@ import warnings
 
 import pytest
 
-# Apps built without an explicit store open `BILLIARDS_DB` (default ./billiards.db): never
-# the working tree. Session-wide servers share this one; each test gets its own below.
-os.environ["BILLIARDS_DB"] = os.path.join(tempfile.mkdtemp(prefix="billiards-"), "test.db")
+# Settings read from the environment open `POOL_DB_PATH` (default ./billiards.db): never
+# the working tree. Tests that build `Settings(...)` give their own `db_path`.
+os.environ["POOL_DB_PATH"] = os.path.join(tempfile.mkdtemp(prefix="billiards-"), "test.db")
 
 # Starlette 1.10 asks for `httpx2` under its TestClient; plain httpx works the same here.
 warnings.filterwarnings("ignore", message=".*httpx2.*")
@@ -19,7 +19,7 @@ warnings.filterwarnings("ignore", message=".*httpx2.*")
 @pytest.fixture(autouse=True)
 def _own_database(tmp_path_factory, monkeypatch) -> None:
     """A fresh database per test, so rooms saved by one test are not restored in another."""
-    monkeypatch.setenv("BILLIARDS_DB", str(tmp_path_factory.mktemp("db") / "billiards.db"))
+    monkeypatch.setenv("POOL_DB_PATH", str(tmp_path_factory.mktemp("db") / "billiards.db"))
 
 
 @pytest.fixture(scope="session", autouse=True)

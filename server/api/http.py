@@ -1,14 +1,15 @@
-"""HTTP routes: health, create/list/show rooms, take a seat."""
+"""HTTP routes: health, limits, create/list/show rooms, take a seat."""
 
 from __future__ import annotations
 
-from typing import Annotated
+from typing import Annotated, Any
 
-from fastapi import APIRouter, HTTPException, Query, Request, status
+from fastapi import APIRouter, HTTPException, Query, status
 
-from server.rooms import ActionError, RoomRegistry
-from server.rooms.live import LiveRoom
+from server.protocol import LIMITS, Limits
+from server.rooms import ActionError
 
+from .deps import Registry, RoomDep, SettingsDep
 from .schemas import (
     CreateRoom,
     ErrorResponse,
@@ -23,48 +24,43 @@ from .schemas import (
 )
 
 router = APIRouter()
-_ERRORS = {404: {"model": ErrorResponse}, 409: {"model": ErrorResponse},
+_ERRORS: dict[int | str, dict[str, Any]] = {404: {"model": ErrorResponse}, 409: {"model": ErrorResponse},
            422: {"description": "Validation error"}}
 
 
-def _registry(request: Request) -> RoomRegistry:
-    return request.app.state.registry
-
-
-def _room(request: Request, room_id: str) -> LiveRoom:
-    live = _registry(request).get(room_id)
-    if live is None:
-        raise HTTPException(404, {"code": "unknown_room", "message": "No such room."})
-    return live
-
-
 @router.get("/health", response_model=Health, tags=["meta"])
-async def health() -> dict:
+async def health() -> dict[str, Any]:
     return {"status": "ok"}
 
 
+@router.get("/api/limits", response_model=Limits, tags=["meta"])
+async def limits() -> Limits:
+    """Every bound a client's messages must respect (also in each socket's `welcome`)."""
+    return LIMITS
+
+
 @router.get("/api/stats", response_model=ServerStats, tags=["meta"])
-async def server_stats(request: Request,
+async def server_stats(registry: Registry,
                        window: Annotated[float, Query(gt=0, le=600, allow_inf_nan=False)] = 60.0
-                       ) -> dict:
+                       ) -> dict[str, Any]:
     """Load and stream health: rooms, connections, messages waiting in outboxes, and how
     late frames left the server (percentiles over the last `window` seconds)."""
-    return _registry(request).stats(window)
+    return registry.stats(window)
 
 
 @router.post("/api/rooms", status_code=status.HTTP_201_CREATED, response_model=RoomCreated,
              responses={422: {"description": "Validation error"},
                         503: {"model": ErrorResponse}}, tags=["rooms"])
-async def create_room(body: CreateRoom, request: Request) -> dict:
+async def create_room(body: CreateRoom, registry: Registry,
+                      settings: SettingsDep) -> dict[str, Any]:
     """Open a table. `practice` has one seat and no clock; join it next to sit down."""
-    settings = request.app.state.settings
     clock = body.shot_clock
     if clock is not None and 0 < clock < settings.min_shot_clock:
         raise HTTPException(422, {"code": "bad_shot_clock", "message":
                                   f"The shot clock is 0 (off) or at least "
                                   f"{settings.min_shot_clock:g} seconds."})
     try:
-        live = _registry(request).create(body.game, body.race_to, clock)
+        live = registry.create(body.game, body.race_to, clock)
     except ActionError as exc:
         raise HTTPException(503, {"code": exc.code, "message": exc.message}) from None
     room = live.room
@@ -74,23 +70,22 @@ async def create_room(body: CreateRoom, request: Request) -> dict:
 
 
 @router.get("/api/rooms", response_model=RoomList, tags=["rooms"])
-async def list_rooms(request: Request) -> dict:
-    return {"rooms": [live.room.summary() for live in _registry(request).listing()]}
+async def list_rooms(registry: Registry) -> dict[str, Any]:
+    return {"rooms": [live.room.summary() for live in registry.listing()]}
 
 
 @router.get("/api/rooms/{room_id}", response_model=RoomDetail, responses=_ERRORS,
             tags=["rooms"])
-async def show_room(room_id: str, request: Request) -> dict:
+async def show_room(live: RoomDep) -> dict[str, Any]:
     """The room and its full public state (the WebSocket `state` body)."""
-    live = _room(request, room_id)
-    return {**live.room.summary(), "state": live.state_body()}
+    state = live.state_message().model_dump(mode="json", exclude={"type", "seq"})
+    return {**live.room.summary(), "state": state}
 
 
 @router.post("/api/rooms/{room_id}/join", response_model=Joined, responses=_ERRORS,
              tags=["rooms"])
-async def join_room(room_id: str, body: JoinRoom, request: Request) -> dict:
+async def join_room(room_id: str, body: JoinRoom, live: RoomDep) -> dict[str, Any]:
     """Take the first free seat. The token is shown once; keep it to connect and reconnect."""
-    live = _room(request, room_id)
     try:
         seat, token = live.room.join(body.name)
     except ActionError as exc:

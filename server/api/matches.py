@@ -1,23 +1,27 @@
-"""HTTP routes for the match history (issue 7): recent matches, one match with its shots,
-and the replay of a stored shot streamed like the live one (NDJSON, paced in real time)."""
+"""HTTP routes for the match history: recent matches, one match with its shots, and the
+replay of a stored shot streamed like the live one (NDJSON, paced in real time)."""
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+import asyncio
+from dataclasses import asdict
+from typing import Annotated, Any, Literal
 
-from fastapi import APIRouter, HTTPException, Query, Request
+from fastapi import APIRouter, HTTPException, Query
 from fastapi.responses import StreamingResponse
 from pydantic import BaseModel
 
-from server.engine import BallSet, Table
-from server.rooms.stream import BallRow, frame_rows
-from server.store import Database
-from server.store.replay import stream_replay
+from server.codec import from_data
+from server.engine import TICK_HZ, BallSet, Table
+from server.protocol import BallRow, StreamRates, frame_rows
+from server.rooms.replay import EngineChanged, replay_motion, stream_replay
+from server.store import MatchRecord, Repository, ShotRecord
 
+from .deps import SettingsDep, Store
 from .schemas import ErrorResponse
 
 router = APIRouter()
-_NOT_FOUND = {404: {"model": ErrorResponse}, 422: {"description": "Validation error"}}
+_NOT_FOUND: dict[int | str, dict[str, Any]] = {404: {"model": ErrorResponse}, 422: {"description": "Validation error"}}
 
 
 class MatchBase(BaseModel):
@@ -64,6 +68,7 @@ class StoredShot(BaseModel):
     outcome: dict
     played_at: float
     replay: str
+    engine: str | None  # the engine version that played it (None: not recorded)
     b: list[list[int]]  # the balls on the table before it, as in `state`: [id, x_mm, y_mm, cel]
 
 
@@ -71,10 +76,7 @@ class MatchDetail(MatchBase):
     games: list[GameSummary]
     shots: list[StoredShot]
     geometry: dict | None  # the table as `state.table` gives it (to draw a replay); None: no shot
-
-
-def _db(request: Request) -> Database:
-    return request.app.state.store
+    stream: StreamRates  # how a replay is streamed (tick rate and frames)
 
 
 def _missing(what: str) -> HTTPException:
@@ -82,33 +84,48 @@ def _missing(what: str) -> HTTPException:
 
 
 @router.get("/api/matches", response_model=MatchList, tags=["history"])
-async def recent_matches(request: Request,
+async def recent_matches(store: Store,
                          limit: Annotated[int, Query(ge=1, le=100)] = 20,
                          status: Literal["playing", "finished", "abandoned"] | None = None
-                         ) -> dict:
+                         ) -> dict[str, Any]:
     """Matches newest first (finished, still being played, or abandoned)."""
-    records = await _db(request).call(lambda repo: repo.recent_matches(limit, status))
-    return {"matches": [r.to_dict() for r in records]}
+    records = await store.call(lambda repo: repo.recent_matches(limit, status))
+    return {"matches": [_match_row(r) for r in records]}
 
 
 @router.get("/api/matches/{match_id}", response_model=MatchDetail, responses=_NOT_FOUND,
             tags=["history"])
-async def show_match(match_id: int, request: Request) -> dict:
+async def show_match(match_id: int, store: Store, settings: SettingsDep) -> dict[str, Any]:
     """One match: its games (frames) and every shot, with the table before it (exact)."""
-    def load(repo):
+    def load(repo: Repository) -> Any:
         match = repo.match(match_id)
         return None if match is None else (match, repo.games(match_id), repo.shots(match_id))
 
-    found = await _db(request).call(load)
+    found = await store.call(load)
     if found is None:
         raise _missing("match")
     match, games, shots = found
-    rows = [s.to_dict() for s in shots]
-    for row in rows:
-        row["b"] = _resting_rows(row["balls"])
-    geometry = Table(*rows[0]["table"]).to_dict() if rows else None
-    return {**match.to_dict(), "games": [g.to_dict() for g in games], "shots": rows,
-            "geometry": geometry}
+    rows = [_shot_row(s) for s in shots]
+    geometry = from_data(Table, shots[0].table).to_dict() if shots else None
+    games_rows = [{k: v for k, v in asdict(g).items() if k != "match_id"} for g in games]
+    return {**_match_row(match), "games": games_rows, "shots": rows, "geometry": geometry,
+            "stream": StreamRates(tick_hz=TICK_HZ, frame_every=settings.frame_every,
+                                  frames_per_message=settings.frames_per_message)}
+
+
+def _match_row(match: MatchRecord) -> dict[str, Any]:
+    row = asdict(match)
+    row["game"] = row.pop("kind")
+    row["winner_name"] = match.players[match.winner] if match.winner is not None else None
+    return row
+
+
+def _shot_row(shot: ShotRecord) -> dict[str, Any]:
+    return {"n": shot.n, "shot_id": shot.room_shot, "game": shot.game, "seat": shot.seat,
+            "shot": shot.shot, "table": shot.table, "balls": shot.balls,
+            "outcome": shot.outcome, "played_at": shot.played_at, "engine": shot.engine,
+            "replay": f"/api/matches/{shot.match_id}/shots/{shot.n}/replay",
+            "b": _resting_rows(shot.balls)}
 
 
 def _resting_rows(balls: dict) -> list[BallRow]:
@@ -121,21 +138,25 @@ def _resting_rows(balls: dict) -> list[BallRow]:
     **_NOT_FOUND, 200: {"content": {"application/x-ndjson": {}},
                         "description": "one JSON message a line, as on the room socket"}},
             response_class=StreamingResponse, tags=["history"])
-async def replay_shot(match_id: int, n: int, request: Request,
+async def replay_shot(match_id: int, n: int, store: Store, settings: SettingsDep,
                       pace: Annotated[float, Query(gt=0, le=100, allow_inf_nan=False)] = 1.0
                       ) -> StreamingResponse:
-    """Simulate stored shot `n` again and stream its `frame` and `event` messages exactly as
-    the room sent them live (same format, same timing; `pace` 2 plays twice as fast), then
-    its `shot_result`. Newline-delimited JSON."""
-    def load(repo):
+    """Stream stored shot `n`'s `frame` and `event` messages exactly as the room sent them
+    live (same format, same timing; `pace` 2 plays twice as fast), then its `shot_result`.
+    Newline-delimited JSON. 409 `engine_changed`: an old shot whose motion was not kept,
+    played by an engine other than this server's."""
+    def load(repo: Repository) -> tuple[MatchRecord | None, ShotRecord | None]:
         return repo.match(match_id), repo.shot(match_id, n)
 
-    match, shot = await _db(request).call(load)
+    match, shot = await store.call(load)
     if match is None:
         raise _missing("match")
     if shot is None:
         raise _missing("shot")
-    settings = request.app.state.settings
-    return StreamingResponse(stream_replay(shot, match, settings.frame_every,
-                                           settings.frames_per_message, pace),
+    try:
+        messages = await asyncio.to_thread(replay_motion, shot, settings.frame_every,
+                                           settings.frames_per_message)
+    except EngineChanged as exc:
+        raise HTTPException(409, {"code": "engine_changed", "message": str(exc)}) from None
+    return StreamingResponse(stream_replay(messages, shot, match, pace),
                              media_type="application/x-ndjson")

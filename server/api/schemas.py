@@ -6,6 +6,8 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from server.protocol.limits import MAX_NAME
+
 GameKind = Literal["eight_ball", "nine_ball", "practice"]
 
 
@@ -51,7 +53,7 @@ class RoomDetail(RoomSummary):
 
 
 class JoinRoom(Strict):
-    name: Annotated[str, Field(min_length=1, max_length=24,
+    name: Annotated[str, Field(min_length=1, max_length=MAX_NAME,
                                description="1-24 printable characters")]
 
 

@@ -15,12 +15,13 @@ from fastapi import APIRouter, WebSocket
 from starlette.websockets import WebSocketState
 
 from server.config import Settings
-from server.rooms import RoomRegistry
+from server.protocol import BadMessage, parse_client_message
+from server.protocol.outbound import ErrorMessage, text
+from server.rooms import LiveRoom
 from server.rooms.connection import Connection, cancel_quietly
-from server.rooms.live import LiveRoom, encode
 from server.rooms.ratelimit import TokenBucket
 
-from .messages import BadMessage, parse_client_message
+from .deps import Registry, SettingsDep
 from .origin import origin_allowed
 
 router = APIRouter()
@@ -31,9 +32,8 @@ CLOSE_TOO_BIG = 1009
 
 
 @router.websocket("/ws/rooms/{room_id}")
-async def room_socket(websocket: WebSocket, room_id: str, token: str | None = None) -> None:
-    settings: Settings = websocket.app.state.settings
-    registry: RoomRegistry = websocket.app.state.registry
+async def room_socket(websocket: WebSocket, room_id: str, settings: SettingsDep,
+                      registry: Registry, token: str | None = None) -> None:
     if not origin_allowed(websocket.headers.get("origin"), websocket.headers.get("host"),
                           settings.allowed_origins):
         await websocket.close(CLOSE_POLICY, "origin_not_allowed")
@@ -74,26 +74,25 @@ async def _read(websocket: WebSocket, live: LiveRoom, conn: Connection,
         message = await websocket.receive()
         if message["type"] == "websocket.disconnect":
             return
-        text = message.get("text")
-        if text is None:
+        raw = message.get("text")
+        if raw is None:
             size = len(message.get("bytes") or b"")
         else:
-            size = len(text.encode("utf-8", "surrogatepass")) if len(text) * 4 > \
-                settings.max_message else len(text)
+            size = len(raw.encode("utf-8", "surrogatepass")) if len(raw) * 4 > \
+                settings.max_message else len(raw)
         if size > settings.max_message:
             conn.close(CLOSE_TOO_BIG, "message_too_big")
             return
         if not bucket.take():
             conn.close(CLOSE_POLICY, "rate_limited")
             return
-        if text is None:
-            conn.push(encode({"type": "error", "code": "binary_not_supported",
-                              "message": "Send JSON text frames.", "ref": None}))
+        if raw is None:
+            conn.push(text(ErrorMessage(code="binary_not_supported",
+                                        message="Send JSON text frames.")))
             continue
         try:
-            msg = parse_client_message(text)
+            msg = parse_client_message(raw)
         except BadMessage as exc:
-            conn.push(encode({"type": "error", "code": exc.code, "message": exc.message,
-                              "ref": exc.ref}))
+            conn.push(text(ErrorMessage(code=exc.code, message=exc.message, ref=exc.ref)))
             continue
         live.handle(conn, msg)

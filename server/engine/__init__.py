@@ -8,12 +8,39 @@ from .params import DEFAULT_PARAMS, PhysicsParams
 from .rack import rack, rack_slots
 from .results import Event, EventKind, Frame, FrameSequence, ShotResult
 from .shot import MAX_SPEED, MAX_TIP, Shot
-from .simulate import DEFAULT_TICK, ShotInMotion, run_to_rest, simulate, step, strike
+from .simulate import DEFAULT_TICK, TICK_HZ, ShotInMotion, run_to_rest, simulate, step, strike
 from .table import BALL_MASS, BALL_RADIUS, Cushion, Pocket, Table
+from .version import ENGINE_VERSION, PHYSICS_REVISION, engine_version
 
 __all__ = [
-    "BALL_MASS", "BALL_RADIUS", "CUE", "DEFAULT_PARAMS", "DEFAULT_TICK", "MAX_SPEED", "MAX_TIP",
-    "BallSet", "Cushion", "Event", "EventKind", "Frame", "FrameSequence", "MotionState",
-    "PhysicsParams", "Pocket", "Shot", "ShotInMotion", "ShotResult", "Table", "rack", "rack_slots",
-    "run_to_rest", "simulate", "step", "strike",
+    "BALL_MASS",
+    "BALL_RADIUS",
+    "CUE",
+    "DEFAULT_PARAMS",
+    "DEFAULT_TICK",
+    "ENGINE_VERSION",
+    "MAX_SPEED",
+    "MAX_TIP",
+    "PHYSICS_REVISION",
+    "TICK_HZ",
+    "BallSet",
+    "Cushion",
+    "Event",
+    "EventKind",
+    "Frame",
+    "FrameSequence",
+    "MotionState",
+    "PhysicsParams",
+    "Pocket",
+    "Shot",
+    "ShotInMotion",
+    "ShotResult",
+    "Table",
+    "engine_version",
+    "rack",
+    "rack_slots",
+    "run_to_rest",
+    "simulate",
+    "step",
+    "strike",
 ]

@@ -2,6 +2,9 @@
 
 Ball ids are 0 (the cue ball) to 15. A `BallSet` may hold any subset (9-ball uses 0-9);
 row `i` of every array belongs to ball `ids[i]`.
+
+Its stored form is the codec's (`server.codec.to_data`): one nested list per array, floats
+exact, so a stored table replays bit for bit.
 """
 
 from __future__ import annotations
@@ -9,14 +12,33 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 from enum import IntEnum
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..codec import from_data, to_data
 from .params import DEFAULT_PARAMS, PhysicsParams
 from .physics.tick import cels_of
 
+if TYPE_CHECKING:  # to mypy the codec's array types are values; pydantic reads the real ones
+    Float64Array = np.ndarray
+    Int64Array = np.ndarray
+else:
+    from ..codec import Float64Array, Int64Array
+
 CUE = 0
 MAX_BALL_ID = 15
+
+# Each array's shape after the ball count.
+_SHAPES = (
+    ("ids", ()),
+    ("positions", (2,)),
+    ("velocities", (2,)),
+    ("spins", (3,)),
+    ("states", ()),
+    ("phases", ()),
+    ("pockets", ()),
+)
 
 
 class MotionState(IntEnum):
@@ -38,13 +60,25 @@ class BallSet:
     pockets (N,) pocket index for a pocketed ball, else -1.
     """
 
-    ids: np.ndarray
-    positions: np.ndarray
-    velocities: np.ndarray
-    spins: np.ndarray
-    states: np.ndarray
-    phases: np.ndarray
-    pockets: np.ndarray
+    ids: Int64Array
+    positions: Float64Array
+    velocities: Float64Array
+    spins: Float64Array
+    states: Int64Array
+    phases: Float64Array
+    pockets: Int64Array
+
+    def __post_init__(self) -> None:
+        """Refuse arrays that disagree on the ball count: loaded data is checked here, and
+        an empty set's arrays take their 2-D shapes back from flat empty lists."""
+        n = len(self.ids)
+        for name, tail in _SHAPES:
+            shape = (n, *tail)
+            array = getattr(self, name)
+            if array.shape != shape:
+                if array.size != 0 or n != 0:
+                    raise ValueError(f"{name} has shape {array.shape}, expected {shape}")
+                setattr(self, name, array.reshape(shape))
 
     @classmethod
     def place(cls, placement: Mapping[int, tuple[float, float]]) -> BallSet:
@@ -69,9 +103,20 @@ class BallSet:
         )
 
     def copy(self) -> BallSet:
-        return BallSet(*(a.copy() for a in (self.ids, self.positions, self.velocities,
-                                             self.spins, self.states, self.phases,
-                                             self.pockets)))
+        return BallSet(
+            *(
+                a.copy()
+                for a in (
+                    self.ids,
+                    self.positions,
+                    self.velocities,
+                    self.spins,
+                    self.states,
+                    self.phases,
+                    self.pockets,
+                )
+            )
+        )
 
     def __len__(self) -> int:
         return len(self.ids)
@@ -130,30 +175,16 @@ class BallSet:
         """Translational plus rotational kinetic energy of the balls on the table (J)."""
         on = self.on_table
         inertia = 0.4 * mass * radius * radius
-        return float(0.5 * mass * np.sum(self.velocities[on] ** 2)
-                     + 0.5 * inertia * np.sum(self.spins[on] ** 2))
+        return float(
+            0.5 * mass * np.sum(self.velocities[on] ** 2)
+            + 0.5 * inertia * np.sum(self.spins[on] ** 2)
+        )
 
     def to_dict(self) -> dict:
-        """Exact plain data (floats as Python floats) for storage and bit-exact replay."""
-        return {
-            "ids": self.ids.tolist(),
-            "positions": self.positions.tolist(),
-            "velocities": self.velocities.tolist(),
-            "spins": self.spins.tolist(),
-            "states": self.states.tolist(),
-            "phases": self.phases.tolist(),
-            "pockets": self.pockets.tolist(),
-        }
+        """The stored form: `server.codec.to_data(self)`."""
+        return to_data(self)
 
     @classmethod
     def from_dict(cls, data: Mapping) -> BallSet:
-        n = len(data["ids"])
-        return cls(
-            ids=np.array(data["ids"], dtype=np.int64),
-            positions=np.array(data["positions"], dtype=np.float64).reshape(n, 2),
-            velocities=np.array(data["velocities"], dtype=np.float64).reshape(n, 2),
-            spins=np.array(data["spins"], dtype=np.float64).reshape(n, 3),
-            states=np.array(data["states"], dtype=np.int64),
-            phases=np.array(data["phases"], dtype=np.float64),
-            pockets=np.array(data["pockets"], dtype=np.int64),
-        )
+        """The inverse of `to_dict`: `server.codec.from_data(BallSet, data)`."""
+        return from_data(cls, dict(data))

@@ -63,8 +63,9 @@ class Frame:
 class FrameSequence(Sequence[Frame]):
     """Frames stored as three stacked arrays; `Frame` views are made on access."""
 
-    def __init__(self, tick: float, positions: np.ndarray, cels: np.ndarray,
-                 on_table: np.ndarray) -> None:
+    def __init__(
+        self, tick: float, positions: np.ndarray, cels: np.ndarray, on_table: np.ndarray
+    ) -> None:
         self.tick = tick
         self.positions = positions  # (T, N, 2)
         self.cels = cels  # (T, N)
@@ -86,8 +87,13 @@ class FrameSequence(Sequence[Frame]):
             index += n
         if not 0 <= index < n:
             raise IndexError(index)
-        return Frame(index + 1, (index + 1) * self.tick, self.positions[index],
-                     self.cels[index], self.on_table[index])
+        return Frame(
+            index + 1,
+            (index + 1) * self.tick,
+            self.positions[index],
+            self.cels[index],
+            self.on_table[index],
+        )
 
     def __iter__(self) -> Iterator[Frame]:
         for i in range(len(self)):

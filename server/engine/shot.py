@@ -22,6 +22,9 @@ class Shot:
 
     `tip = (side, height)`: side > 0 strikes right of centre (seen from behind the cue),
     height > 0 above centre; both as fractions of the radius, with |tip| <= 0.5.
+
+    Stored and sent through the codec as `{"angle", "speed", "tip": [side, height]}`;
+    loading runs `__post_init__`, so a stored or received shot is checked like a new one.
     """
 
     angle: float
@@ -38,8 +41,9 @@ class Shot:
         if math.hypot(side, height) > MAX_TIP + 1e-12:
             raise ValueError(f"tip offset must be within {MAX_TIP} of the radius")
 
-    def cue_ball_motion(self, radius: float) -> tuple[tuple[float, float],
-                                                       tuple[float, float, float]]:
+    def cue_ball_motion(
+        self, radius: float
+    ) -> tuple[tuple[float, float], tuple[float, float, float]]:
         """Velocity (vx, vy) and angular velocity (wx, wy, wz) just after the strike."""
         dx, dy = math.cos(self.angle), math.sin(self.angle)
         side, height = self.tip

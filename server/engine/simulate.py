@@ -15,7 +15,8 @@ from .results import EVENT_CODES, Event, EventKind, FrameSequence, ShotResult
 from .shot import Shot
 from .table import Table
 
-DEFAULT_TICK = 1.0 / 120.0
+TICK_HZ = 120  # ticks per second: fixed, so clients are told it rather than a setting
+DEFAULT_TICK = 1.0 / TICK_HZ
 MAX_SHOT_SECONDS = 300.0  # no real shot comes close; a guard, not a rule
 _EVENT_CAPACITY = 16384
 
@@ -44,8 +45,9 @@ def _geometry(table: Table) -> _Geometry:
     return geo
 
 
-def strike(balls: BallSet, shot: Shot, params: PhysicsParams = DEFAULT_PARAMS,
-           time: float = 0.0) -> Event:
+def strike(
+    balls: BallSet, shot: Shot, params: PhysicsParams = DEFAULT_PARAMS, time: float = 0.0
+) -> Event:
     """Give the cue ball the shot's velocity and spin (in place); returns the strike event."""
     row = balls.index(CUE)
     if balls.states[row] == MotionState.POCKETED:
@@ -68,22 +70,43 @@ def _events_from(rows: np.ndarray, ids: np.ndarray) -> list[Event]:
     first = rows[:, 2].astype(np.int64).tolist()
     second = rows[:, 3].astype(np.int64).tolist()
     targets = rows[:, 5].astype(np.int64).tolist()
-    return [Event(time, names[code], (id_of[a],) if b < 0 else (id_of[a], id_of[b]), speed,
-                  target)
-            for time, speed, code, a, b, target in zip(
-                rows[:, 0].tolist(), rows[:, 4].tolist(), codes, first, second, targets,
-                strict=True)]
+    return [
+        Event(time, names[code], (id_of[a],) if b < 0 else (id_of[a], id_of[b]), speed, target)
+        for time, speed, code, a, b, target in zip(
+            rows[:, 0].tolist(), rows[:, 4].tolist(), codes, first, second, targets, strict=True
+        )
+    ]
 
 
-def step(table: Table, balls: BallSet, tick: float = DEFAULT_TICK, time: float = 0.0,
-         params: PhysicsParams = DEFAULT_PARAMS) -> list[Event]:
+def step(
+    table: Table,
+    balls: BallSet,
+    tick: float = DEFAULT_TICK,
+    time: float = 0.0,
+    params: PhysicsParams = DEFAULT_PARAMS,
+) -> list[Event]:
     """Advance `balls` in place by one tick; returns the tick's events (times from `time`)."""
     geo = _geometry(table)
     events = empty_events(_EVENT_CAPACITY)
-    n_ev, _ = run_tick(balls.positions, balls.velocities, balls.spins, balls.states,
-                       balls.phases, balls.pockets, geo.cushions, geo.jaws, geo.pockets,
-                       geo.centers, geo.length, geo.width, params.array(), float(tick),
-                       float(time), events, 0)
+    n_ev, _ = run_tick(
+        balls.positions,
+        balls.velocities,
+        balls.spins,
+        balls.states,
+        balls.phases,
+        balls.pockets,
+        geo.cushions,
+        geo.jaws,
+        geo.pockets,
+        geo.centers,
+        geo.length,
+        geo.width,
+        params.array(),
+        float(tick),
+        float(time),
+        events,
+        0,
+    )
     return _events_from(events[:n_ev], balls.ids)
 
 
@@ -91,9 +114,23 @@ def _run_kernel(geo: _Geometry, s: BallSet, tick: float, params: np.ndarray) -> 
     """(frame positions, cels, on-table flags, event rows, stalled ticks); `s` is advanced
     in place to rest."""
     return run_to_rest_kernel(
-        s.positions, s.velocities, s.spins, s.states, s.phases, s.pockets, geo.cushions,
-        geo.jaws, geo.pockets, geo.centers, geo.length, geo.width, params, tick,
-        int(MAX_SHOT_SECONDS / tick), _EVENT_CAPACITY)
+        s.positions,
+        s.velocities,
+        s.spins,
+        s.states,
+        s.phases,
+        s.pockets,
+        geo.cushions,
+        geo.jaws,
+        geo.pockets,
+        geo.centers,
+        geo.length,
+        geo.width,
+        params,
+        tick,
+        int(MAX_SHOT_SECONDS / tick),
+        _EVENT_CAPACITY,
+    )
 
 
 class ShotInMotion:
@@ -103,8 +140,14 @@ class ShotInMotion:
 
     `simulate` is the three in a row; splitting them changes nothing in the result."""
 
-    def __init__(self, table: Table, balls: BallSet, shot: Shot, tick: float = DEFAULT_TICK,
-                 params: PhysicsParams = DEFAULT_PARAMS) -> None:
+    def __init__(
+        self,
+        table: Table,
+        balls: BallSet,
+        shot: Shot,
+        tick: float = DEFAULT_TICK,
+        params: PhysicsParams = DEFAULT_PARAMS,
+    ) -> None:
         self.tick = float(tick)
         self.state = balls.copy()
         self._events = [strike(self.state, shot, params)]
@@ -129,8 +172,13 @@ class ShotInMotion:
         return ShotResult(state.ids.copy(), frames, events, state, int(stalls))
 
 
-def simulate(table: Table, balls: BallSet, shot: Shot, tick: float = DEFAULT_TICK,
-             params: PhysicsParams = DEFAULT_PARAMS) -> ShotResult:
+def simulate(
+    table: Table,
+    balls: BallSet,
+    shot: Shot,
+    tick: float = DEFAULT_TICK,
+    params: PhysicsParams = DEFAULT_PARAMS,
+) -> ShotResult:
     """Strike the cue ball and run ticks until every ball is at rest or pocketed.
 
     `balls` is not modified. Residual spin about the vertical axis of a ball that has
@@ -141,12 +189,17 @@ def simulate(table: Table, balls: BallSet, shot: Shot, tick: float = DEFAULT_TIC
     return motion.result()
 
 
-def run_to_rest(table: Table, state: BallSet, tick: float = DEFAULT_TICK,
-                params: PhysicsParams = DEFAULT_PARAMS,
-                events: list[Event] | None = None) -> FrameSequence:
+def run_to_rest(
+    table: Table,
+    state: BallSet,
+    tick: float = DEFAULT_TICK,
+    params: PhysicsParams = DEFAULT_PARAMS,
+    events: list[Event] | None = None,
+) -> FrameSequence:
     """Advance `state` in place until no ball moves; appends events to `events`."""
-    positions, cels, on_table, rows, _ = _run_kernel(_geometry(table), state, float(tick),
-                                                     params.array())
+    positions, cels, on_table, rows, _ = _run_kernel(
+        _geometry(table), state, float(tick), params.array()
+    )
     if events is not None:
         events.extend(_events_from(rows, state.ids))
     return FrameSequence(float(tick), positions, cels, on_table)

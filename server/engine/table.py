@@ -12,9 +12,15 @@ crosses the mouth line between the two jaws of a pocket.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from collections.abc import Sequence
+from dataclasses import dataclass, field, fields
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from pydantic import GetCoreSchemaHandler
+    from pydantic_core import CoreSchema
 
 BALL_RADIUS = 0.028575  # m (2.25 in diameter, WPA)
 BALL_MASS = 0.17  # kg
@@ -55,7 +61,13 @@ class Pocket:
 
 @dataclass(frozen=True)
 class Table:
-    """A pool table: playing-surface size, cushions, jaws and pockets (all derived)."""
+    """A pool table: playing-surface size, cushions, jaws and pockets (all derived).
+
+    Stored through the codec (`server.codec.to_data`) as its constructor fields only,
+    `{"length", "width", "ball_radius", "corner_mouth", "side_mouth"}`; the geometry is
+    rebuilt on load. The codec also loads the older stored form, those fields as a list.
+    `to_dict` is not storage: it is the derived geometry browsers draw.
+    """
 
     length: float
     width: float
@@ -72,12 +84,27 @@ class Table:
             length, width = TABLE_SIZES[size]
         except KeyError:
             raise ValueError(
-                f"unknown table size {size!r}; choose one of {sorted(TABLE_SIZES)}") from None
+                f"unknown table size {size!r}; choose one of {sorted(TABLE_SIZES)}"
+            ) from None
         return cls(length, width)
 
+    @classmethod
+    def from_fields(cls, values: Sequence[float]) -> Table:
+        """A table from its constructor fields in order: the list form stored before the
+        codec (`[length, width, ball_radius, corner_mouth, side_mouth]`)."""
+        return cls(*(float(v) for v in values))
+
+    @classmethod
+    def __get_pydantic_core_schema__(cls, source: Any, handler: GetCoreSchemaHandler) -> CoreSchema:
+        """The codec's schema for the fields, taking the older list form as well."""
+        from pydantic_core import core_schema
+
+        return core_schema.no_info_before_validator_function(_fields_by_name, handler(source))
+
     def __post_init__(self) -> None:
-        cushions, pockets = _build_geometry(self.length, self.width, self.corner_mouth,
-                                            self.side_mouth)
+        cushions, pockets = _build_geometry(
+            self.length, self.width, self.corner_mouth, self.side_mouth
+        )
         object.__setattr__(self, "cushions", cushions)
         object.__setattr__(self, "pockets", pockets)
 
@@ -124,8 +151,9 @@ class Table:
 
     def pocket_array(self) -> np.ndarray:
         """(P, 6) float64: jaw A x, y, jaw B x, y, outward normal x, y of each mouth."""
-        return np.array([[*p.jaws[0], *p.jaws[1], *p.outward] for p in self.pockets],
-                        dtype=np.float64)
+        return np.array(
+            [[*p.jaws[0], *p.jaws[1], *p.outward] for p in self.pockets], dtype=np.float64
+        )
 
     def pocket_centers(self) -> np.ndarray:
         """(P, 2) float64 drop-circle centres."""
@@ -140,15 +168,35 @@ class Table:
             "head_string": self.head_string,
             "head_spot": list(self.head_spot),
             "foot_spot": list(self.foot_spot),
-            "cushions": [{"start": list(c.start), "end": list(c.end), "normal": list(c.normal)}
-                         for c in self.cushions],
-            "pockets": [{"name": p.name, "jaws": [list(j) for j in p.jaws],
-                         "center": list(p.center), "radius": p.radius} for p in self.pockets],
+            "cushions": [
+                {"start": list(c.start), "end": list(c.end), "normal": list(c.normal)}
+                for c in self.cushions
+            ],
+            "pockets": [
+                {
+                    "name": p.name,
+                    "jaws": [list(j) for j in p.jaws],
+                    "center": list(p.center),
+                    "radius": p.radius,
+                }
+                for p in self.pockets
+            ],
         }
 
 
-def _build_geometry(length: float, width: float, corner_mouth: float,
-                    side_mouth: float) -> tuple[tuple[Cushion, ...], tuple[Pocket, ...]]:
+def _fields_by_name(value: object) -> object:
+    """The list form of a stored table as the mapping the codec reads; others unchanged."""
+    if isinstance(value, list | tuple):
+        names = [f.name for f in fields(Table) if f.init]
+        if not 2 <= len(value) <= len(names):
+            raise ValueError(f"a table's field list has 2 to {len(names)} numbers")
+        return dict(zip(names, value, strict=False))
+    return value
+
+
+def _build_geometry(
+    length: float, width: float, corner_mouth: float, side_mouth: float
+) -> tuple[tuple[Cushion, ...], tuple[Pocket, ...]]:
     a = corner_mouth / math.sqrt(2.0)  # each corner jaw's distance from the corner
     s = side_mouth / 2.0
     mid = length / 2.0
@@ -166,17 +214,47 @@ def _build_geometry(length: float, width: float, corner_mouth: float,
     # The drop circle sits behind the mouth so that it touches the mouth line's middle.
     corner_back = corner_r - a / 2.0 * math.sqrt(2.0) + 0.02
     pockets = (
-        Pocket("bottom_left", ((0.0, a), (a, 0.0)), (-d, -d),
-               (-corner_back * d, -corner_back * d), corner_r),
-        Pocket("bottom_side", ((mid - s, 0.0), (mid + s, 0.0)), (0.0, -1.0),
-               (mid, -side_r * 0.6), side_r),
-        Pocket("bottom_right", ((length - a, 0.0), (length, a)), (d, -d),
-               (length + corner_back * d, -corner_back * d), corner_r),
-        Pocket("top_right", ((length, width - a), (length - a, width)), (d, d),
-               (length + corner_back * d, width + corner_back * d), corner_r),
-        Pocket("top_side", ((mid + s, width), (mid - s, width)), (0.0, 1.0),
-               (mid, width + side_r * 0.6), side_r),
-        Pocket("top_left", ((a, width), (0.0, width - a)), (-d, d),
-               (-corner_back * d, width + corner_back * d), corner_r),
+        Pocket(
+            "bottom_left",
+            ((0.0, a), (a, 0.0)),
+            (-d, -d),
+            (-corner_back * d, -corner_back * d),
+            corner_r,
+        ),
+        Pocket(
+            "bottom_side",
+            ((mid - s, 0.0), (mid + s, 0.0)),
+            (0.0, -1.0),
+            (mid, -side_r * 0.6),
+            side_r,
+        ),
+        Pocket(
+            "bottom_right",
+            ((length - a, 0.0), (length, a)),
+            (d, -d),
+            (length + corner_back * d, -corner_back * d),
+            corner_r,
+        ),
+        Pocket(
+            "top_right",
+            ((length, width - a), (length - a, width)),
+            (d, d),
+            (length + corner_back * d, width + corner_back * d),
+            corner_r,
+        ),
+        Pocket(
+            "top_side",
+            ((mid + s, width), (mid - s, width)),
+            (0.0, 1.0),
+            (mid, width + side_r * 0.6),
+            side_r,
+        ),
+        Pocket(
+            "top_left",
+            ((a, width), (0.0, width - a)),
+            (-d, d),
+            (-corner_back * d, width + corner_back * d),
+            corner_r,
+        ),
     )
     return cushions, pockets

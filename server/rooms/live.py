@@ -12,30 +12,38 @@ import math
 import time
 from dataclasses import dataclass
 
-from server.api.messages import (
-    AnyClientMessage,
-    Chat,
-    Decide,
-    PlaceCue,
-    Shoot,
-)
 from server.config import Settings
-from server.engine import BallSet, Shot
+from server.engine import TICK_HZ, BallSet, Shot
+from server.protocol import LIMITS, Timed, message_text
+from server.protocol.inbound import AnyClientMessage, Chat, Decide, PlaceCue, Shoot
+from server.protocol.outbound import (
+    AimRelay,
+    ChatMessage,
+    ClockInfo,
+    ErrorMessage,
+    GraceInfo,
+    Pong,
+    Presence,
+    ResultCause,
+    Sequenced,
+    ServerMessage,
+    ShotResultMessage,
+    StateMessage,
+    Welcome,
+    text,
+)
 from server.rules import Outcome
 
+from .clock import SYSTEM_CLOCK, Clock
 from .connection import CLOSE_REPLACED, Connection
 from .errors import ActionError
 from .metrics import StreamMetrics
 from .observer import NullObserver, RoomObserver
 from .room import Room
 from .shot_runner import ShotRunner
-from .stream import Timed, encode, message_text
 
 log = logging.getLogger(__name__)
 SLOW_SHOT = 0.25  # s from strike to stream start worth a warning in the log
-
-
-__all__ = ["LiveRoom", "encode"]  # `encode` for the API layer
 
 
 def superseded_times(plan: list[Timed]) -> list[float]:
@@ -62,13 +70,14 @@ class LiveRoom:
     """Drives one `Room`: dispatches members' messages, streams shots, runs the clocks."""
 
     def __init__(self, room: Room, settings: Settings,
-                 observer: RoomObserver | None = None) -> None:
+                 observer: RoomObserver | None = None, clock: Clock = SYSTEM_CLOCK) -> None:
         self.room = room
         self.settings = settings
+        self.clock = clock
         self.observer: RoomObserver = observer or NullObserver()
         self.members: dict[int, Connection] = {}
         self.seq = 0
-        self.last_activity = time.monotonic()
+        self.last_activity = self.clock.monotonic()
         self.ever_joined = False
         self.metrics = StreamMetrics(capacity=1)  # the registry shares one for all rooms
         self.runner = ShotRunner(0, settings.frame_every, settings.frames_per_message)
@@ -79,57 +88,60 @@ class LiveRoom:
 
     # ---- sending ----------------------------------------------------------------------
 
-    def broadcast(self, payload: dict, droppable: bool = False) -> None:
+    def broadcast(self, message: Sequenced, droppable: bool = False) -> None:
         """Send to every member with the next room sequence number."""
         self.seq += 1
-        text = encode({"type": payload["type"], "seq": self.seq,
-                       **{k: v for k, v in payload.items() if k != "type"}})
+        message.seq = self.seq
+        encoded = text(message)
         for conn in list(self.members.values()):
-            conn.push(text, droppable)
+            conn.push(encoded, droppable)
 
     def broadcast_body(self, kind: str, body: str, droppable: bool = False) -> None:
         """`broadcast` of a message whose JSON without `type` and `seq` is ready (`body`):
         the stream encodes a shot's messages once, off the event loop."""
         self.seq += 1
-        text = message_text(kind, self.seq, body)
+        encoded = message_text(kind, self.seq, body)
         for conn in list(self.members.values()):
-            conn.push(text, droppable)
+            conn.push(encoded, droppable)
 
-    def relay(self, payload: dict, exclude: Connection) -> None:
+    def relay(self, message: ServerMessage, exclude: Connection) -> None:
         """Send to everyone else, without a sequence number, droppable (aim relays)."""
-        text = encode(payload)
+        encoded = text(message)
         for conn in list(self.members.values()):
             if conn is not exclude:
-                conn.push(text, True)
+                conn.push(encoded, True)
 
-    def reply(self, conn: Connection, payload: dict) -> None:
-        conn.push(encode(payload))
+    def reply(self, conn: Connection, message: ServerMessage) -> None:
+        conn.push(text(message))
 
-    def state_body(self) -> dict:
-        return self.room.state_body(self.clock_info(), self.grace_info())
+    def state_message(self) -> StateMessage:
+        return self.room.state_message(self.clock_info(), self.grace_info())
 
-    def state_text(self) -> str:
-        """`state_body` as JSON (without `type` and `seq`), the table's geometry spliced in
-        from its cached text: ~1.5 KB that never changes, encoded after every shot it was
-        ~0.15 ms of the loop each time."""
-        body = self.state_body()
-        del body["table"]
-        return f'{encode(body)[:-1]},"table":{self.room.table_json()}}}'
+    def state_text(self, seq: int) -> str:
+        """The `state` message as JSON, the table's geometry spliced in from its cached
+        text: ~1.5 KB that never changes; encoding it after every shot cost ~0.15 ms of the
+        loop each time."""
+        message = self.state_message()
+        message.seq = seq
+        return f'{text(message, exclude={"table"})[:-1]},"table":{self.room.table_json()}}}'
 
     def send_state(self, conn: Connection) -> None:
-        conn.push(message_text("state", self.seq, self.state_text()))
+        conn.push(self.state_text(self.seq))
 
     def broadcast_state(self) -> None:
-        self.broadcast_body("state", self.state_text())
+        self.seq += 1
+        encoded = self.state_text(self.seq)
+        for conn in list(self.members.values()):
+            conn.push(encoded, False)
 
     def broadcast_presence(self) -> None:
-        self.broadcast({"type": "presence", "players": self.room.players_info(),
-                        "spectators": self.room.spectators, "grace": self.grace_info()})
+        self.broadcast(Presence(players=self.room.players_info(),
+                                spectators=self.room.spectators, grace=self.grace_info()))
 
     # ---- membership -------------------------------------------------------------------
 
     def touch(self) -> None:
-        self.last_activity = time.monotonic()
+        self.last_activity = self.clock.monotonic()
 
     def on_joined(self, seat: int) -> None:
         """A seat was taken over HTTP: tell the room; start the match clocks when full."""
@@ -158,14 +170,12 @@ class LiveRoom:
         else:
             self.room.spectators += 1
         self.members[conn.id] = conn
-        self.reply(conn, {"type": "welcome", "protocol": 1, "room_id": self.room.room_id,
-                          "seat": conn.seat,
-                          "role": "spectator" if conn.seat is None else "player",
-                          "name": conn.name, "seq": self.seq,
-                          "tick_hz": self.settings.tick_hz,
-                          "frame_every": self.settings.frame_every,
-                          "frames_per_message": self.settings.frames_per_message,
-                          "server_time": time.time()})
+        self.reply(conn, Welcome(room_id=self.room.room_id, seat=conn.seat,
+                                 role="spectator" if conn.seat is None else "player",
+                                 name=conn.name, seq=self.seq, tick_hz=TICK_HZ,
+                                 frame_every=self.settings.frame_every,
+                                 frames_per_message=self.settings.frames_per_message,
+                                 server_time=self.clock.wall(), limits=LIMITS))
         self.send_state(conn)
         self.broadcast_presence()
 
@@ -210,27 +220,26 @@ class LiveRoom:
         try:
             self._dispatch(conn, msg)
         except ActionError as exc:
-            self.reply(conn, {"type": "error", "code": exc.code, "message": exc.message,
-                              "ref": msg.type})
+            self.reply(conn, ErrorMessage(code=exc.code, message=exc.message, ref=msg.type))
 
     def _dispatch(self, conn: Connection, msg: AnyClientMessage) -> None:
         room, seat = self.room, conn.seat
         match msg.type:
             case "ping":
-                self.reply(conn, {"type": "pong", "id": msg.id, "server_time": time.time()})
+                self.reply(conn, Pong(id=msg.id, server_time=self.clock.wall()))
             case "sync":
                 self.send_state(conn)
             case "chat":
                 assert isinstance(msg, Chat)
-                text = "".join(ch if ch.isprintable() else " " for ch in msg.text).strip()
-                if not text:
+                line = "".join(ch if ch.isprintable() else " " for ch in msg.text).strip()
+                if not line:
                     raise ActionError("bad_message", "text: the message is empty")
-                self.broadcast({"type": "chat", "seat": seat, "name": room.name_of(seat),
-                                "text": text, "at": time.time()})
+                self.broadcast(ChatMessage(seat=seat, name=room.name_of(seat), text=line,
+                                           at=self.clock.wall()))
             case "aim":
                 room.check_aim(seat)
-                self.relay({"type": "aim", "seat": seat, "angle": msg.angle,
-                            "power": msg.power, "tip": list(msg.tip)}, exclude=conn)
+                self.relay(AimRelay(seat=seat, angle=msg.angle, power=msg.power, tip=msg.tip),
+                           exclude=conn)
             case "shoot":
                 assert isinstance(msg, Shoot)
                 self._shoot(seat, msg)
@@ -288,7 +297,7 @@ class LiveRoom:
 
     def _shoot(self, seat: int | None, msg: Shoot) -> None:
         try:
-            shot = Shot(msg.angle, msg.speed, tuple(msg.tip))
+            shot = Shot(msg.angle, msg.speed, msg.tip)
         except ValueError as exc:
             raise ActionError("bad_message", str(exc)) from None
         self.start_shot(seat, shot)
@@ -323,7 +332,7 @@ class LiveRoom:
             self._arm_clock(restart=True)
             self.broadcast_state()
             return
-        self.observer.shot_played(room, seat, shot, before, outcome)
+        self.observer.shot_played(room, seat, shot, before, outcome, plan)
         loop = asyncio.get_running_loop()
         start = loop.time()
         self.metrics.shot_started(start, time.perf_counter() - started)
@@ -350,19 +359,19 @@ class LiveRoom:
         room.end_shot()
         self._after_result()
 
-    def _send_result(self, shot_id: int | None, cause: str, outcome: Outcome) -> None:
+    def _send_result(self, shot_id: int | None, cause: ResultCause, outcome: Outcome) -> None:
         match = self.room.match
         assert match is not None
-        self.broadcast({"type": "shot_result", "shot": shot_id, "cause": cause,
-                        "outcome": outcome.to_dict(), "score": list(match.score),
-                        "match_over": match.over, "match_winner": match.winner})
+        self.broadcast(ShotResultMessage(shot=shot_id, cause=cause,
+                                         outcome=outcome, score=list(match.score),
+                                         match_over=match.over, match_winner=match.winner))
 
     def _after_result(self) -> None:
         self._arm_clock(restart=True)
         self.broadcast_state()
         self.observer.room_changed(self.room)
 
-    def _conclude(self, cause: str, outcome: Outcome, absent: int | None = None) -> None:
+    def _conclude(self, cause: ResultCause, outcome: Outcome, absent: int | None = None) -> None:
         """A non-shot outcome (timeout, concession, forfeit): result, next rack, state.
         `absent`: a seat that forfeited and is still away; the next frame is at stake."""
         self._send_result(None, cause, outcome)
@@ -374,12 +383,12 @@ class LiveRoom:
 
     # ---- shot clock ---------------------------------------------------------------------
 
-    def clock_info(self) -> dict | None:
+    def clock_info(self) -> ClockInfo | None:
         if self._clock is None:
             return None
         remaining = max(0.0, self._clock.deadline - asyncio.get_running_loop().time())
-        return {"seat": self._clock.seat, "remaining": round(remaining, 2),
-                "limit": self.room.shot_clock}
+        return ClockInfo(seat=self._clock.seat, remaining=round(remaining, 2),
+                         limit=self.room.shot_clock)
 
     def _arm_clock(self, restart: bool) -> None:
         seat = self.room.acting_seat() if self.room.shot_clock > 0 else None
@@ -413,11 +422,11 @@ class LiveRoom:
 
     # ---- reconnection grace ---------------------------------------------------------------
 
-    def grace_info(self) -> list[dict]:
+    def grace_info(self) -> list[GraceInfo]:
         if not self._grace:
             return []
         now = asyncio.get_running_loop().time()
-        return [{"seat": t.seat, "remaining": round(max(0.0, t.deadline - now), 2)}
+        return [GraceInfo(seat=t.seat, remaining=round(max(0.0, t.deadline - now), 2))
                 for t in sorted(self._grace.values(), key=lambda t: t.seat)]
 
     def _start_grace(self, seat: int) -> None:

@@ -1,4 +1,4 @@
-"""Where storage hooks in (issue 7): a room tells its observer after every shot and change.
+"""Where storage hooks in: a room tells its observer after every shot and change.
 
 The default does nothing. A store implements these methods; they run on the event loop,
 so they must be quick (queue the write and return).
@@ -9,6 +9,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Protocol
 
 from server.engine import BallSet, Shot
+from server.protocol import ShotPlan
 from server.rules import Outcome
 
 if TYPE_CHECKING:
@@ -20,8 +21,9 @@ class RoomObserver(Protocol):
         """A shot was struck (the match is still as before it): save what a restart replays."""
 
     def shot_played(self, room: Room, seat: int, shot: Shot, before: BallSet,
-                    outcome: Outcome) -> None:
-        """A shot was simulated and judged: `before` is the table it was played from."""
+                    outcome: Outcome, plan: ShotPlan) -> None:
+        """A shot was simulated and judged: `before` is the table it was played from,
+        `plan` the motion every member is shown."""
 
     def outcome(self, room: Room, cause: str, outcome: Outcome) -> None:
         """A non-shot outcome: "timeout", "concede" or "forfeit"."""
@@ -32,13 +34,19 @@ class RoomObserver(Protocol):
     def room_closed(self, room: Room) -> None:
         """The room expired and is gone."""
 
+    def room_restored(self, room: Room, match_id: int | None) -> None:
+        """A saved room came back after a restart, still recording into `match_id`."""
+
+    def room_unreadable(self, room_id: str) -> None:
+        """A saved room could not be read back (and will not be restored)."""
+
 
 class NullObserver:
     def shot_started(self, room: Room, seat: int, shot: Shot, shot_id: int) -> None:
         pass
 
     def shot_played(self, room: Room, seat: int, shot: Shot, before: BallSet,
-                    outcome: Outcome) -> None:
+                    outcome: Outcome, plan: ShotPlan) -> None:
         pass
 
     def outcome(self, room: Room, cause: str, outcome: Outcome) -> None:
@@ -48,4 +56,10 @@ class NullObserver:
         pass
 
     def room_closed(self, room: Room) -> None:
+        pass
+
+    def room_restored(self, room: Room, match_id: int | None) -> None:
+        pass
+
+    def room_unreadable(self, room_id: str) -> None:
         pass

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from server.engine import BallSet, Shot, ShotResult, Table, rack, simulate
 
-from .stream import ShotPlan, plan_shot
+from server.protocol.plan import ShotPlan, plan_shot
 
 
 def prepare_shot(table: Table, before: BallSet, shot: Shot, shot_id: int,

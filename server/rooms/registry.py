@@ -5,16 +5,18 @@ from __future__ import annotations
 
 import asyncio
 import logging
-import time
 
 from server.config import Settings
+from server.store import RoomSnapshot
 
+from .clock import SYSTEM_CLOCK, Clock, SeedSource
 from .errors import ActionError
 from .live import LiveRoom
 from .metrics import StreamMetrics
 from .observer import RoomObserver
 from .room import Room
 from .shot_runner import ShotRunner
+from .snapshot import room_from_snapshot
 from .tokens import new_room_id
 
 log = logging.getLogger(__name__)
@@ -24,9 +26,12 @@ CLOSE_EXPIRED = 1001
 class RoomRegistry:
     """Creates, finds, lists and expires rooms. One process owns its rooms (one worker)."""
 
-    def __init__(self, settings: Settings, observer: RoomObserver | None = None) -> None:
+    def __init__(self, settings: Settings, observer: RoomObserver | None = None,
+                 clock: Clock = SYSTEM_CLOCK, seeds: SeedSource | None = None) -> None:
         self.settings = settings
         self.observer = observer
+        self.clock = clock
+        self.seeds = seeds or SeedSource()
         self.rooms: dict[str, LiveRoom] = {}
         self.metrics = StreamMetrics()
         self.runner = ShotRunner(settings.shot_workers, settings.frame_every,
@@ -39,18 +44,41 @@ class RoomRegistry:
         while room_id in self.rooms:
             room_id = new_room_id()
         clock = self.settings.shot_clock if shot_clock is None else shot_clock
-        room = Room(room_id, game, race_to=race_to, shot_clock=clock, created_at=time.time())
-        live = LiveRoom(room, self.settings, self.observer)
+        room = Room(room_id, game, race_to=race_to, shot_clock=clock, seed=self.seeds.next(),
+                    created_at=self.clock.wall())
+        live = LiveRoom(room, self.settings, self.observer, self.clock)
         self._share(live)
         self.rooms[room_id] = live
         if self.observer is not None:
             self.observer.room_changed(room)
         return live
 
-    def add(self, live: LiveRoom) -> None:
-        """Put back a restored room (storage, issue 7)."""
-        self._share(live)
-        self.rooms[live.room.room_id] = live
+    def restore(self, snapshots: list[RoomSnapshot]) -> list[LiveRoom]:
+        """Bring saved rooms back after a restart: seats empty until their players
+        reconnect with their tokens; a shot that was in flight is played again from its
+        start (same result, bit for bit). Needs the running loop. A snapshot that cannot be
+        read is logged and skipped."""
+        restored = []
+        for snap in snapshots:
+            if snap.room_id in self.rooms:
+                continue  # still live in this process
+            try:
+                saved = room_from_snapshot(snap.data)
+            except (KeyError, TypeError, ValueError):
+                log.exception("room %s could not be restored; dropped", snap.room_id)
+                if self.observer is not None:
+                    self.observer.room_unreadable(snap.room_id)
+                continue
+            live = LiveRoom(saved.room, self.settings, self.observer, self.clock)
+            if self.observer is not None:
+                self.observer.room_restored(saved.room, saved.match_id)
+            self._share(live)
+            self.rooms[saved.room.room_id] = live
+            live.resume(saved.pending)
+            restored.append(live)
+        if restored:
+            log.info("restored %d rooms", len(restored))
+        return restored
 
     def _share(self, live: LiveRoom) -> None:
         live.metrics = self.metrics
@@ -64,7 +92,7 @@ class RoomRegistry:
 
     def sweep(self, now: float | None = None) -> list[str]:
         """Close and forget rooms nobody has used for their time to live."""
-        now = time.monotonic() if now is None else now
+        now = self.clock.monotonic() if now is None else now
         gone = [rid for rid, live in self.rooms.items() if live.is_idle(now)]
         for rid in gone:
             self.rooms.pop(rid).close(CLOSE_EXPIRED, "expired")

@@ -12,15 +12,30 @@ import secrets
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
+from typing import Any, Literal
 
+from server.codec import encode
 from server.engine import BallSet, Shot, ShotResult, Table
+from server.protocol import BallRow, StreamFrames, Timed, frame_rows
+from server.protocol.limits import MAX_NAME
+from server.protocol.outbound import (
+    ClockInfo,
+    GraceInfo,
+    PlayerInfo,
+    RoomInfo,
+    ShotInfo,
+    StateMessage,
+)
 from server.rules import GAME_KINDS, Match, Outcome, RulesError
 
 from .errors import ActionError
-from .stream import BallRow, StreamFrames, Timed, encode, frame_rows
 from .tokens import hash_token, new_token, token_matches
 
-WAITING, AIMING, ROLLING, OVER = "waiting", "aiming", "rolling", "over"
+Phase = Literal["waiting", "aiming", "rolling", "over"]
+WAITING: Phase = "waiting"
+AIMING: Phase = "aiming"
+ROLLING: Phase = "rolling"
+OVER: Phase = "over"
 
 
 @functools.lru_cache(maxsize=8)
@@ -33,9 +48,6 @@ def _table_dict(table: Table) -> dict:
 @functools.lru_cache(maxsize=8)
 def _table_json(table: Table) -> str:
     return encode(_table_dict(table))
-
-
-MAX_NAME = 24
 
 
 @dataclass
@@ -131,14 +143,14 @@ class Room:
         s = self.seats[seat]
         return s.name if s else f"seat {seat}"
 
-    def players_info(self) -> list[dict]:
-        return [{"seat": i, "name": s.name, "connected": s.connected}
+    def players_info(self) -> list[PlayerInfo]:
+        return [PlayerInfo(seat=i, name=s.name, connected=s.connected)
                 for i, s in enumerate(self.seats) if s is not None]
 
     # ---- what is shown ----------------------------------------------------------------
 
     @property
-    def phase(self) -> str:
+    def phase(self) -> Phase:
         if self.match is None:
             return WAITING
         if self.shot is not None:
@@ -148,9 +160,11 @@ class Room:
         return AIMING
 
     @property
-    def status(self) -> str:
+    def status(self) -> Literal["waiting", "playing", "finished"]:
         phase = self.phase
-        return {WAITING: "waiting", OVER: "finished"}.get(phase, "playing")
+        if phase == WAITING:
+            return "waiting"
+        return "finished" if phase == OVER else "playing"
 
     def acting_seat(self) -> int | None:
         """Who the match waits for: the seat of a pending decision, else the turn."""
@@ -184,27 +198,32 @@ class Room:
     def _table(self) -> Table:
         return self.match.game.table if self.match else Table.pool("9ft")
 
-    def state_body(self, clock: dict | None, grace: list[dict]) -> dict:
-        """The `state` message without `type` and `seq`."""
+    def room_info(self) -> RoomInfo:
+        return RoomInfo(room_id=self.room_id, game=self.game, race_to=self.race_to,
+                        shot_clock=self.shot_clock, seats=len(self.seats),
+                        status=self.status,
+                        players=self.players_info(), spectators=self.spectators,
+                        rematch=sorted(self.rematch_votes))
+
+    def state_message(self, clock: ClockInfo | None, grace: list[GraceInfo]) -> StateMessage:
+        """The `state` message (its `seq` set by the sender)."""
         shot = self.shot
+        match_state: dict[str, Any] | None
         if shot is not None:
             match_state = shot.match_before
             balls = shot.balls
-            shot_info = {"id": shot.id, "seat": shot.seat, "tick": shot.tick,
-                         "ticks": shot.ticks}
+            shot_info = ShotInfo(id=shot.id, seat=shot.seat, tick=shot.tick, ticks=shot.ticks)
         else:
             match_state = self.match.public_state() if self.match else None
             balls = self.resting_balls()
             shot_info = None
-        room = {k: v for k, v in self.summary().items() if k not in ("score", "created_at")}
-        room["players"] = self.players_info()
-        room["rematch"] = sorted(self.rematch_votes)
-        return {"room": room, "phase": self.phase, "table": self.table_dict(), "balls": balls,
-                "shot": shot_info, "clock": clock, "grace": grace, "match": match_state}
+        return StateMessage(room=self.room_info(), phase=self.phase,
+                            table=self.table_dict(), balls=balls, shot=shot_info, clock=clock,
+                            grace=grace, match=match_state)
 
     # ---- actions ----------------------------------------------------------------------
 
-    def _require_player(self, seat: int | None) -> Match:
+    def _require_player(self, seat: int | None) -> tuple[Match, int]:
         if seat is None:
             raise ActionError("spectator", "Spectators can watch and chat, not play.")
         if self.match is None:
@@ -213,14 +232,14 @@ class Room:
             raise ActionError("balls_moving", "Wait until the balls stop.")
         if self.match.over:
             raise ActionError("match_over", "The match is over; ask for a rematch.")
-        return self.match
+        return self.match, seat
 
     def begin_shot(self, seat: int | None, shot: Shot) -> tuple[int, BallSet]:
         """Check that `seat` may shoot now and mark the table busy; returns (shot id, balls).
 
         The caller simulates the shot from the returned copy, then calls `apply_shot`.
         """
-        match = self._require_player(seat)
+        match, seat = self._require_player(seat)
         with _rules():
             match.game.check_shot(seat)
         self.shots_played += 1
@@ -259,53 +278,53 @@ class Room:
             match.next_game()
 
     def place_cue(self, seat: int | None, x: float, y: float) -> None:
-        match = self._require_player(seat)
+        match, seat = self._require_player(seat)
         with _rules():
             match.game.place_cue(seat, x, y)
 
     def call_pocket(self, seat: int | None, pocket: int) -> None:
-        match = self._require_player(seat)
+        match, seat = self._require_player(seat)
         with _rules():
             match.game.call_pocket(seat, pocket)
 
     def decide(self, seat: int | None, option: str) -> None:
-        match = self._require_player(seat)
+        match, seat = self._require_player(seat)
         with _rules():
             match.game.decide(seat, option)
 
     def push_out(self, seat: int | None) -> None:
-        match = self._require_player(seat)
+        match, seat = self._require_player(seat)
         with _rules():
             match.game.declare_push_out(seat)
 
     def rerack(self, seat: int | None) -> None:
-        match = self._require_player(seat)
+        match, seat = self._require_player(seat)
         if not self.practice:
             raise ActionError("not_practice", "Only a practice table can be racked again.")
         with _rules():
             match.game.rerack()
 
     def check_aim(self, seat: int | None) -> None:
-        match = self._require_player(seat)
+        match, seat = self._require_player(seat)
         if seat != self.acting_seat() and not self.practice:
             raise ActionError("not_your_turn", f"It is {self.name_of(match.game.turn)}'s "
                               "turn.")
 
     def concede(self, seat: int | None) -> Outcome:
-        match = self._require_player(seat)
+        match, seat = self._require_player(seat)
         if self.practice:
             raise ActionError("not_allowed", "There is nothing to concede in practice.")
         with _rules():
             return match.concede(seat)
 
     def timeout(self, seat: int) -> Outcome:
-        match = self._require_player(seat)
+        match, seat = self._require_player(seat)
         with _rules():
             return match.timeout(seat)
 
     def forfeit(self, seat: int, reason: str) -> Outcome:
         """`seat` loses the current frame (issue 5: an absent player forfeits the frame)."""
-        match = self._require_player(seat)
+        match, seat = self._require_player(seat)
         with _rules():
             return match.forfeit_game(seat, reason)
 

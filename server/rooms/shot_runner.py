@@ -24,7 +24,7 @@ from concurrent.futures.process import BrokenProcessPool
 from server.engine import BallSet, Shot, ShotInMotion, ShotResult, Table
 
 from .prepare import prepare_shot, warm_up
-from .stream import ShotPlan, plan_shot
+from server.protocol.plan import ShotPlan, plan_shot
 
 log = logging.getLogger(__name__)
 

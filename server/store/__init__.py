@@ -1,17 +1,16 @@
-"""Storage (issue 7): match history and restart recovery in SQLite (stdlib `sqlite3`).
+"""Storage: match history and the saved live rooms, in SQLite (stdlib `sqlite3`).
 
 `Database` owns one connection on its own thread (every read and write runs there in order,
-so the event loop never waits on the disk); `Repository` has the typed queries;
-`StoreObserver` records what rooms do; `snapshot` turns a room into JSON and back;
-`replay` re-simulates a stored shot into the live stream's messages.
+so the event loop never waits on the disk); `Repository` has the typed queries; `records`
+the typed rows. It stores and loads records only: turning rooms into records and back is
+the rooms' job.
 """
 
-from .database import Database, default_db_path
-from .recorder import StoreObserver
+from .database import Database
 from .records import GameRecord, MatchRecord, PendingShot, RoomSnapshot, ShotRecord
 from .repository import Repository
 
 __all__ = [
     "Database", "GameRecord", "MatchRecord", "PendingShot", "Repository", "RoomSnapshot",
-    "ShotRecord", "StoreObserver", "default_db_path",
+    "ShotRecord",
 ]

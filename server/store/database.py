@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import asyncio
 import logging
-import os
 import queue
 import sqlite3
 import threading
@@ -24,15 +23,6 @@ from .schema import migrate
 
 log = logging.getLogger(__name__)
 T = TypeVar("T")
-DEFAULT_DB = "billiards.db"
-
-
-def default_db_path(env: dict[str, str] | None = None) -> Path:
-    """`BILLIARDS_DB` from the environment, else `./billiards.db`."""
-    env = dict(os.environ) if env is None else env
-    return Path(env.get("BILLIARDS_DB") or DEFAULT_DB)
-
-
 class Database:
     def __init__(self, path: Path | str) -> None:
         self.path = Path(path)

@@ -21,14 +21,6 @@ class MatchRecord:
     games: int = 0  # games finished
     shots: int = 0
 
-    def to_dict(self) -> dict:
-        winner_name = self.players[self.winner] if self.winner is not None else None
-        return {"id": self.id, "room_id": self.room_id, "game": self.kind,
-                "players": self.players, "race_to": self.race_to, "status": self.status,
-                "score": self.score, "winner": self.winner, "winner_name": winner_name,
-                "reason": self.reason, "started_at": self.started_at,
-                "finished_at": self.finished_at, "games": self.games, "shots": self.shots}
-
 
 @dataclass(frozen=True)
 class GameRecord:
@@ -40,14 +32,10 @@ class GameRecord:
     score: list[int]
     finished_at: float
 
-    def to_dict(self) -> dict:
-        return {"n": self.n, "winner": self.winner, "reason": self.reason,
-                "cause": self.cause, "score": self.score, "finished_at": self.finished_at}
-
 
 @dataclass(frozen=True)
 class ShotRecord:
-    """One shot: enough to simulate it again bit for bit (`table`, `balls`, `shot`)."""
+    """One shot: the table before it, the stroke, the judged outcome and what was shown."""
 
     match_id: int
     n: int
@@ -59,12 +47,8 @@ class ShotRecord:
     balls: dict  # BallSet.to_dict() before the shot
     outcome: dict  # Outcome.to_dict()
     played_at: float
-
-    def to_dict(self) -> dict:
-        return {"n": self.n, "shot_id": self.room_shot, "game": self.game, "seat": self.seat,
-                "shot": self.shot, "table": self.table, "balls": self.balls,
-                "outcome": self.outcome, "played_at": self.played_at,
-                "replay": f"/api/matches/{self.match_id}/shots/{self.n}/replay"}
+    engine: str | None = None  # ENGINE_VERSION that played it (None: before versions)
+    motion: str | None = None  # the streamed messages (`protocol.plan.motion_text`)
 
 
 @dataclass(frozen=True)
@@ -80,7 +64,7 @@ class PendingShot:
 
 @dataclass
 class RoomSnapshot:
-    """A live room as saved after every shot: see `server.store.snapshot`."""
+    """A live room as saved after every shot: see `server.rooms.snapshot`."""
 
     room_id: str
     data: dict = field(repr=False)

@@ -9,12 +9,14 @@ from __future__ import annotations
 import json
 import sqlite3
 import time
+import zlib
+
+from server.codec import encode
 
 from .records import GameRecord, MatchRecord, RoomSnapshot, ShotRecord
 
 
-def _dump(value: object) -> str:
-    return json.dumps(value, separators=(",", ":"), allow_nan=False)
+_dump = encode
 
 
 class Repository:
@@ -93,32 +95,39 @@ class Repository:
 
     def record_shot(self, match_id: int, room_shot: int, game: int, seat: int, shot: dict,
                     table: list[float], balls: dict, outcome: dict,
-                    played_at: float | None = None) -> int:
+                    played_at: float | None = None, engine: str | None = None,
+                    motion: str | None = None) -> int:
         """Store a shot as number n+1 of its match; a repeat of the same room shot is ignored.
-        Returns the shot's number in the match."""
+        `engine` is the engine version that played it, `motion` the streamed messages
+        (compressed here, on the store's thread). Returns the shot's number in the match."""
+        packed = None if motion is None else zlib.compress(motion.encode(), 6)
         with self.conn:
             self.conn.execute(
                 "INSERT OR IGNORE INTO shots (match_id, n, room_shot, game, seat, shot, "
-                "table_geom, balls, outcome, played_at) VALUES (?, (SELECT COALESCE(MAX(n), 0)"
-                " + 1 FROM shots WHERE match_id = ?), ?, ?, ?, ?, ?, ?, ?, ?)",
+                "table_geom, balls, outcome, played_at, engine, motion) VALUES (?, "
+                "(SELECT COALESCE(MAX(n), 0) + 1 FROM shots WHERE match_id = ?), "
+                "?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
                 (match_id, match_id, room_shot, game, seat, _dump(shot), _dump(table),
-                 _dump(balls), _dump(outcome), time.time() if played_at is None else played_at))
+                 _dump(balls), _dump(outcome), time.time() if played_at is None else played_at,
+                 engine, packed))
             row = self.conn.execute("SELECT n FROM shots WHERE match_id = ? AND room_shot = ?",
                                     (match_id, room_shot)).fetchone()
         return int(row[0])
 
     def shots(self, match_id: int) -> list[ShotRecord]:
-        return self._shots("WHERE match_id = ? ORDER BY n", (match_id,))
+        """Every shot of the match, without its motion (a list has no use for it)."""
+        return self._shots("WHERE match_id = ? ORDER BY n", (match_id,), motion=False)
 
     def shot(self, match_id: int, n: int) -> ShotRecord | None:
-        rows = self._shots("WHERE match_id = ? AND n = ?", (match_id, n))
+        rows = self._shots("WHERE match_id = ? AND n = ?", (match_id, n), motion=True)
         return rows[0] if rows else None
 
-    def _shots(self, where: str, params: tuple) -> list[ShotRecord]:
+    def _shots(self, where: str, params: tuple, motion: bool) -> list[ShotRecord]:
         sql = ("SELECT match_id, n, room_shot, game, seat, shot, table_geom, balls, outcome, "
-               f"played_at FROM shots {where}")
+               f"played_at, engine, {'motion' if motion else 'NULL'} FROM shots {where}")
         return [ShotRecord(r[0], r[1], r[2], r[3], r[4], json.loads(r[5]), json.loads(r[6]),
-                           json.loads(r[7]), json.loads(r[8]), r[9])
+                           json.loads(r[7]), json.loads(r[8]), r[9], r[10],
+                           None if r[11] is None else zlib.decompress(r[11]).decode())
                 for r in self.conn.execute(sql, params)]
 
     # ---- live rooms -------------------------------------------------------------------

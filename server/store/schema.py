@@ -54,9 +54,16 @@ MIGRATIONS: tuple[str, ...] = (
 
     CREATE TABLE rooms (                           -- live rooms, for restart recovery
         room_id     TEXT    PRIMARY KEY,
-        snapshot    TEXT    NOT NULL,              -- JSON, see server/store/snapshot.py
+        snapshot    TEXT    NOT NULL,              -- JSON, see server/rooms/snapshot.py
         updated_at  REAL    NOT NULL
     );
+    """,
+    """
+    -- which engine played each shot, and the motion every member was shown (zlib of
+    -- protocol.plan.motion_text): a replay shows that, not a re-simulation by a newer
+    -- engine. Older rows have neither.
+    ALTER TABLE shots ADD COLUMN engine TEXT;
+    ALTER TABLE shots ADD COLUMN motion BLOB;
     """,
 )
 

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 from collections.abc import Iterator
-from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -24,7 +23,7 @@ def settings(tmp_path: Path) -> Settings:
     web.mkdir()
     (web / "index.html").write_text("<!doctype html><title>pool</title><p>lobby</p>")
     (web / "app.js").write_text("export const ok = true;\n")
-    return replace(FAST, web_dir=web)
+    return FAST.replace(web_dir=web, db_path=tmp_path / "billiards.db")
 
 
 @pytest.fixture
@@ -34,7 +33,7 @@ def client(settings: Settings) -> Iterator[TestClient]:
 
 
 def make_client(settings: Settings, **changes) -> TestClient:
-    return TestClient(create_app(replace(settings, **changes)))
+    return TestClient(create_app(settings.replace(**changes)))
 
 
 def create_room(client: TestClient, game: str = "eight_ball", **extra) -> str:

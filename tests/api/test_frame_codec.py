@@ -10,8 +10,8 @@ from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 
 from server.engine import Shot, Table, rack, simulate
-from server.rooms.frame_codec import encode_frames
-from server.rooms.stream import frame_rows, plan_shot
+from server.protocol.frame_codec import encode_frames
+from server.protocol.plan import frame_rows, plan_shot
 
 
 def reference(shot_id, ticks, ids, mm, cels, on_table, last) -> list[str]:
@@ -70,7 +70,8 @@ def test_a_real_shot_streams_the_rows_of_its_ticks():
        target=st.integers(-1, 40))
 def test_event_text_is_what_json_dumps_gives(shot_id, tick, time, speed, kind, ids, target):
     from server.engine import Event
-    from server.rooms.stream import encode, event_body
+    from server.codec import encode
+    from server.protocol.plan import event_body
 
     event = Event(time, kind, tuple(ids), speed, target)
     assert event_body(shot_id, tick, event) == encode(
@@ -82,7 +83,7 @@ def test_an_event_that_is_not_finite_is_refused():
     import pytest
 
     from server.engine import Event
-    from server.rooms.stream import event_body
+    from server.protocol.plan import event_body
 
     with pytest.raises(ValueError):
         event_body(1, 2, Event(0.1, "ball", (0, 1), float("inf"), -1))
@@ -91,7 +92,7 @@ def test_an_event_that_is_not_finite_is_refused():
 def test_sounds_close_together_share_a_message_and_none_is_lost():
     """A break: each event message carries the sounds of one frame message's span (`also`);
     flattened, they are exactly the sounds chosen, in time order."""
-    from server.rooms.stream import _sounds
+    from server.protocol.plan import _sounds
 
     table = Table.pool("9ft")
     result = simulate(table, rack("eight_ball", table, seed=3), Shot(0.0, 9.0))

@@ -10,7 +10,6 @@ import asyncio
 import json
 import time
 from contextlib import AbstractContextManager
-from dataclasses import replace
 
 import httpx
 import pytest
@@ -119,7 +118,7 @@ async def play(address: str) -> None:
 
 
 def test_real_server_plays_shots_with_reconnection_mid_shot(settings):
-    with live_server(replace(settings, pace=1.0)) as address:
+    with live_server(settings.replace(pace=1.0)) as address:
         asyncio.run(play(address))
 
 
@@ -136,7 +135,7 @@ async def spectate_offering_deflate(address: str) -> tuple[str | None, dict]:
 
 @pytest.mark.parametrize("deflate", [False, True])
 def test_permessage_deflate_is_accepted_only_when_enabled(settings, deflate):
-    with live_server(replace(settings, ws_deflate=deflate)) as address:
+    with live_server(settings.replace(ws_deflate=deflate)) as address:
         extensions, state = asyncio.run(spectate_offering_deflate(address))
     assert ("permessage-deflate" in (extensions or "")) is deflate
     assert state["room"]["game"] == "practice"

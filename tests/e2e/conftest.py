@@ -7,7 +7,6 @@ with shots paced twice as fast as real time so the break takes a few seconds to 
 from __future__ import annotations
 
 from collections.abc import Callable, Iterator
-from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -24,11 +23,11 @@ E2E_SETTINGS = Settings(pace=2.0)
 
 
 @pytest.fixture(scope="package")
-def base_url() -> Iterator[str]:
+def base_url(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
     """A live server; the engine is compiled first so the first shot does not wait for it."""
     table = Table.pool("9ft")
     simulate(table, rack("eight_ball", table), Shot(0.0, 1.0))
-    settings = replace(E2E_SETTINGS)
+    settings = E2E_SETTINGS.replace(db_path=tmp_path_factory.mktemp("e2e") / "billiards.db")
     with serving(create_app(settings), settings, bound_socket()) as address:
         yield f"http://{address}"
 

@@ -45,8 +45,12 @@ def in_play_area(table, positions: np.ndarray, tol: float = 1e-9) -> np.ndarray:
     least R from every cushion segment and jaw, and on the table side of every pocket mouth."""
     r = table.ball_radius
     p = np.asarray(positions, dtype=float).reshape(-1, 2)
-    ok = ((p[:, 0] >= -tol) & (p[:, 0] <= table.length + tol)
-          & (p[:, 1] >= -tol) & (p[:, 1] <= table.width + tol))
+    ok = (
+        (p[:, 0] >= -tol)
+        & (p[:, 0] <= table.length + tol)
+        & (p[:, 1] >= -tol)
+        & (p[:, 1] <= table.width + tol)
+    )
     for c in table.cushions:
         ok &= segment_distance(p, np.array(c.start), np.array(c.end)) >= r - tol
     for pocket in table.pockets:

@@ -25,8 +25,9 @@ def test_every_rack_seed_breaks_to_rest(table, game, seed):
         assert in_play_area(table, result.frames.positions[k][on]).all()
 
 
-@pytest.mark.parametrize("speed,angle,tip", [(12.0, 0.0, (0, 0)), (11.0, 0.01, (0.2, 0.3)),
-                                             (8.0, -0.015, (0, -0.4))])
+@pytest.mark.parametrize(
+    "speed,angle,tip", [(12.0, 0.0, (0, 0)), (11.0, 0.01, (0.2, 0.3)), (8.0, -0.015, (0, -0.4))]
+)
 def test_hard_and_off_centre_breaks(table, speed, angle, tip):
     result = simulate(table, rack("eight_ball", table, seed=1), Shot(angle, speed, tip=tip))
     assert result.stalled_ticks == 0 and len(result.events) < MAX_EVENTS

@@ -54,8 +54,11 @@ shots = st.builds(
     tip=st.tuples(st.floats(-0.35, 0.35), st.floats(-0.35, 0.35)),
 )
 
-SETTINGS = settings(max_examples=40, deadline=None,
-                    suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
+SETTINGS = settings(
+    max_examples=40,
+    deadline=None,
+    suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow],
+)
 
 
 @SETTINGS
@@ -94,27 +97,31 @@ vectors = st.tuples(st.floats(-12, 12), st.floats(-12, 12))
 
 
 @settings(max_examples=200, deadline=None)
-@given(angle=st.floats(-math.pi, math.pi), v1=vectors, v2=vectors,
-       e=st.floats(0.5, 1.0))
+@given(angle=st.floats(-math.pi, math.pi), v1=vectors, v2=vectors, e=st.floats(0.5, 1.0))
 def test_ball_ball_event_conserves_momentum_and_loses_energy(angle, v1, v2, e):
     pos = np.array([[0.0, 0.0], [2 * R * math.cos(angle), 2 * R * math.sin(angle)]])
     vel = np.array([v1, v2], dtype=float)
     before_p = vel.sum(axis=0)
-    before_ke = float((vel ** 2).sum())
+    before_ke = float((vel**2).sum())
     w = np.zeros((2, 3))
     states = np.full(2, MotionState.SLIDING, dtype=np.int64)
     params = DEFAULT_PARAMS.__class__(e_ball=e).array()
     ball_ball(pos, vel, w, states, 0, 1, params)
     # exact, but for a ball left slower than EPS_SPEED, which the engine stops
     assert vel.sum(axis=0) == pytest.approx(before_p, abs=2 * EPS_SPEED)
-    assert float((vel ** 2).sum()) <= before_ke * (1 + 1e-12) + 1e-15
+    assert float((vel**2).sum()) <= before_ke * (1 + 1e-12) + 1e-15
     # afterwards they never approach
     assert (vel[0] - vel[1]) @ (pos[0] - pos[1]) >= -1e-12
 
 
 @SETTINGS
-@given(x=st.floats(0.2, 2.3), y=st.floats(0.2, 1.07), angle=st.floats(-math.pi, math.pi),
-       distance=st.floats(2 * R + 1e-4, 1.0), speed=st.floats(6.0, 12.0))
+@given(
+    x=st.floats(0.2, 2.3),
+    y=st.floats(0.2, 1.07),
+    angle=st.floats(-math.pi, math.pi),
+    distance=st.floats(2 * R + 1e-4, 1.0),
+    speed=st.floats(6.0, 12.0),
+)
 def test_no_tunnelling_through_a_ball_at_full_speed(x, y, angle, distance, speed):
     d = np.array([math.cos(angle), math.sin(angle)])
     target = np.array([x, y]) + d * distance
@@ -136,8 +143,13 @@ def test_no_tunnelling_through_a_cushion_at_twelve_metres_per_second(x, y, angle
 
 def digest(result) -> str:
     h = hashlib.sha256()
-    for a in (result.frames.positions, result.frames.cels, result.frames.on_table,
-              result.final.positions, result.final.phases):
+    for a in (
+        result.frames.positions,
+        result.frames.cels,
+        result.frames.on_table,
+        result.final.positions,
+        result.final.phases,
+    ):
         h.update(np.ascontiguousarray(a).tobytes())
     h.update(repr([(e.time, e.kind, e.ids, e.speed, e.target) for e in result.events]).encode())
     return h.hexdigest()
@@ -171,8 +183,10 @@ def test_a_shot_run_in_threads_equals_simulate(table):
 
     from server.engine import ShotInMotion, rack
 
-    cases = [(rack("eight_ball", table, seed=s), Shot(0.01 * s, 4.0 + s, tip=(0.0, 0.2)))
-             for s in range(6)]
+    cases = [
+        (rack("eight_ball", table, seed=s), Shot(0.01 * s, 4.0 + s, tip=(0.0, 0.2)))
+        for s in range(6)
+    ]
     motions = [ShotInMotion(table, balls, shot) for balls, shot in cases]
     with pytest.raises(RuntimeError):
         motions[0].result()
@@ -196,8 +210,9 @@ def test_another_process_gets_the_same_bits(table):
 
     r = simulate(table, rack("eight_ball", table, seed=11), Shot(0.0, 10.0))
     here = hashlib.sha256(r.frames.positions.tobytes() + r.final.positions.tobytes())
-    out = subprocess.run([sys.executable, "-c", SCRIPT], capture_output=True, text=True,
-                         check=True, timeout=240)
+    out = subprocess.run(
+        [sys.executable, "-c", SCRIPT], capture_output=True, text=True, check=True, timeout=240
+    )
     assert out.stdout.strip() == here.hexdigest()
 
 

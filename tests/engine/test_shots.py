@@ -43,8 +43,7 @@ def angle_between(u, v):
 
 def test_centre_hit_slides_then_rolls_at_five_sevenths(table):
     balls = BallSet.place({0: (0.4, 0.6)})
-    play_until(table, balls, Shot(0.0, 2.0),
-               lambda b, _: b.states[0] == MotionState.ROLLING)
+    play_until(table, balls, Shot(0.0, 2.0), lambda b, _: b.states[0] == MotionState.ROLLING)
     # It switched at exactly 5/7 V, then rolling resistance acted for the rest of that tick.
     rolling_loss = DEFAULT_PARAMS.u_roll * DEFAULT_PARAMS.g * TICK
     assert 2.0 * 5 / 7 - rolling_loss <= np.linalg.norm(balls.velocities[0]) <= 2.0 * 5 / 7
@@ -124,8 +123,9 @@ def test_straight_shot_into_a_corner_pocket_drops(table):
 
 def test_straight_shot_into_a_side_pocket_drops(table):
     mid = table.length / 2
-    result = simulate(table, BallSet.place({0: (mid, 0.7), 1: (mid, 0.3)}),
-                      Shot(-math.pi / 2, 1.5, tip=(0, -0.3)))
+    result = simulate(
+        table, BallSet.place({0: (mid, 0.7), 1: (mid, 0.3)}), Shot(-math.pi / 2, 1.5, tip=(0, -0.3))
+    )
     drop = next(e for e in result.events if e.kind == "pocket" and e.ids == (1,))
     assert table.pockets[drop.target].name == "bottom_side"
 
@@ -137,8 +137,9 @@ def test_a_shot_into_the_jaw_rattles_out(table):
     direction = (jaw - start) / np.linalg.norm(jaw - start)
     cue = start - direction * 0.2
     angle = math.atan2(direction[1], direction[0])
-    result = simulate(table, BallSet.place({0: tuple(cue), 1: tuple(start)}),
-                      Shot(angle, 1.5, tip=(0, -0.2)))
+    result = simulate(
+        table, BallSet.place({0: tuple(cue), 1: tuple(start)}), Shot(angle, 1.5, tip=(0, -0.2))
+    )
     kinds = [(e.kind, e.ids) for e in result.events]
     assert ("jaw", (1,)) in kinds
     assert 1 not in result.pocketed()
@@ -146,8 +147,9 @@ def test_a_shot_into_the_jaw_rattles_out(table):
 
 def test_cushion_rebound_keeps_eighty_percent_of_the_normal_speed(table):
     balls = BallSet.place({0: (1.0, 0.3)})
-    events = play_until(table, balls, Shot(-math.pi / 2, 2.0),
-                        lambda b, ev: any(e.kind == "cushion" for e in ev))
+    events = play_until(
+        table, balls, Shot(-math.pi / 2, 2.0), lambda b, ev: any(e.kind == "cushion" for e in ev)
+    )
     bounce = next(e for e in events if e.kind == "cushion")
     vx, vy = velocity(balls, 0)
     assert table.cushions[bounce.target].normal == (0.0, 1.0)
@@ -157,8 +159,12 @@ def test_cushion_rebound_keeps_eighty_percent_of_the_normal_speed(table):
 
 def rebound_tangent(table, side):
     balls = BallSet.place({0: (0.8, 0.4)})
-    play_until(table, balls, Shot(-math.pi / 4, 2.0, tip=(side, 0.0)),
-               lambda b, ev: any(e.kind == "cushion" for e in ev))
+    play_until(
+        table,
+        balls,
+        Shot(-math.pi / 4, 2.0, tip=(side, 0.0)),
+        lambda b, ev: any(e.kind == "cushion" for e in ev),
+    )
     return velocity(balls, 0)[0]
 
 

@@ -5,8 +5,9 @@ import pytest
 from server.engine import Table
 
 
-@pytest.mark.parametrize("size,length,width", [("9ft", 2.54, 1.27), ("8ft", 2.34, 1.17),
-                                               ("7ft", 1.98, 0.99)])
+@pytest.mark.parametrize(
+    "size,length,width", [("9ft", 2.54, 1.27), ("8ft", 2.34, 1.17), ("7ft", 1.98, 0.99)]
+)
 def test_pool_sizes(size, length, width):
     t = Table.pool(size)
     assert (t.length, t.width) == (length, width)

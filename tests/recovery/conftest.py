@@ -7,7 +7,6 @@ import asyncio
 import json
 import socket
 from contextlib import AbstractContextManager
-from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -26,7 +25,7 @@ def settings(tmp_path: Path) -> Settings:
     web = tmp_path / "web"
     web.mkdir()
     (web / "index.html").write_text("<!doctype html><title>pool</title>")
-    return replace(FAST, web_dir=web)
+    return FAST.replace(web_dir=web, db_path=tmp_path / "billiards.db")
 
 
 @pytest.fixture

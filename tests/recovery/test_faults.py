@@ -7,7 +7,6 @@ import asyncio
 import json
 import math
 import random
-from dataclasses import replace
 from pathlib import Path
 
 import httpx
@@ -204,7 +203,7 @@ async def fuzz(address: str) -> None:
 
 def test_many_clients_fuzzing_at_once_leave_every_room_consistent_and_playable(
         settings, db_path: Path) -> None:
-    with live_server(replace(settings, pace=20.0), db_path, free_port()) as address:
+    with live_server(settings.replace(pace=20.0), db_path, free_port()) as address:
         asyncio.run(fuzz(address))
 
 
@@ -243,5 +242,5 @@ async def kill_mid_shot(address: str) -> None:
 
 
 def test_a_client_killed_mid_shot_does_not_disturb_the_room(settings, db_path: Path) -> None:
-    with live_server(replace(settings, pace=4.0), db_path, free_port()) as address:
+    with live_server(settings.replace(pace=4.0), db_path, free_port()) as address:
         asyncio.run(kill_mid_shot(address))

@@ -13,7 +13,7 @@ from fastapi.testclient import TestClient
 
 from server.engine import BallSet, Shot, Table, simulate
 from server.store.records import ShotRecord
-from server.store.replay import resimulate
+from server.rooms.replay import resimulate
 
 from .conftest import app_on, shot_payload
 

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import asyncio
 import json
-from dataclasses import replace
 from pathlib import Path
 
 import httpx
@@ -77,7 +76,7 @@ async def collect_close(ws) -> int | None:
 
 
 def test_server_restart_mid_shot_loses_nothing(settings, db_path: Path) -> None:
-    settings = replace(settings, pace=2.0)
+    settings = settings.replace(pace=2.0)
     port = free_port()
     loop = asyncio.new_event_loop()
     try:

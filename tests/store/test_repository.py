@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 from server.engine import BallSet, Shot, Table, rack, simulate
-from server.store import Database, Repository, default_db_path
-from server.store.replay import resimulate
+from server.store import Database, Repository
+from server.rooms.replay import resimulate
 from server.store.schema import MIGRATIONS, migrate
 
 TABLE = Table.pool("9ft")
@@ -34,11 +34,6 @@ def awkward_balls() -> BallSet:
     balls.positions += np.array([[math.pi * 1e-9, -1 / 3 * 1e-7]])
     balls.velocities[1] = (1e-300, -0.1)
     return balls
-
-
-def test_default_path_comes_from_billiards_db() -> None:
-    assert default_db_path({}) == Path("billiards.db")
-    assert default_db_path({"BILLIARDS_DB": "/data/pool.db"}) == Path("/data/pool.db")
 
 
 def test_migrations_run_once_and_record_the_version(tmp_path: Path) -> None:

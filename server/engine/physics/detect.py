@@ -97,12 +97,15 @@ def earliest_event(pos, vel, st, n, horizon, cush, jaws, pockets, length, width,
                 limit = t
         # Rails, jaws and pockets only matter near the edge of the bed.
         reach = _norm(vx, vy) * limit + 1e-9
-        if (2.0 * radius + reach < px < length - 2.0 * radius - reach
-                and 2.0 * radius + reach < py < width - 2.0 * radius - reach):
+        if (
+            2.0 * radius + reach < px < length - 2.0 * radius - reach
+            and 2.0 * radius + reach < py < width - 2.0 * radius - reach
+        ):
             continue
         for c in range(cush.shape[0]):
-            t = line_contact_time(px, py, vx, vy, cush[c, 0], cush[c, 1], cush[c, 4],
-                                  cush[c, 5], radius)
+            t = line_contact_time(
+                px, py, vx, vy, cush[c, 0], cush[c, 1], cush[c, 4], cush[c, 5], radius
+            )
             if t <= limit and t < best_t:
                 # The contact point must lie on the segment; past its ends the jaw is hit.
                 cx = px + vx * t - cush[c, 0]

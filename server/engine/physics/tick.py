@@ -45,8 +45,25 @@ def _record(events, n_ev, time, kind, a, b, speed, target):
 
 
 @njit(cache=True, nogil=True)
-def run_tick(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width,
-             p, dt, t0, events, n_ev):
+def run_tick(
+    pos,
+    vel,
+    w,
+    st,
+    phase,
+    pocket_of,
+    cush,
+    jaws,
+    pockets,
+    centers,
+    length,
+    width,
+    p,
+    dt,
+    t0,
+    events,
+    n_ev,
+):
     """Advance the table by one tick of length dt starting at time t0.
 
     events: (E, 6) float64 rows (time, kind, row a, row b, speed, target); n_ev rows are
@@ -66,8 +83,9 @@ def run_tick(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, le
                 tt = transition_time(st[i], vel[i, 0], vel[i, 1], w[i, 0], w[i, 1], p)
                 if tt < horizon:
                     horizon = tt
-        t, kind, a, b = earliest_event(pos, vel, st, n, horizon, cush, jaws, pockets, length,
-                                       width, p)
+        t, kind, a, b = earliest_event(
+            pos, vel, st, n, horizon, cush, jaws, pockets, length, width, p
+        )
         if kind != EV_NONE:
             advance(pos, vel, w, st, phase, n, t, p)
             elapsed += t
@@ -123,8 +141,12 @@ def _distinct(events, start, n_ev):
     for e in range(start, n_ev):
         seen = False
         for k in range(start, kept):
-            if (events[k, 1] == events[e, 1] and events[k, 2] == events[e, 2]
-                    and events[k, 3] == events[e, 3] and events[k, 5] == events[e, 5]):
+            if (
+                events[k, 1] == events[e, 1]
+                and events[k, 2] == events[e, 2]
+                and events[k, 3] == events[e, 3]
+                and events[k, 5] == events[e, 5]
+            ):
                 seen = True
                 break
         if not seen:
@@ -164,8 +186,24 @@ def cels_of(phase, st, out, p):
 
 
 @njit(cache=True, nogil=True)
-def run_to_rest_kernel(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers,
-                       length, width, p, dt, max_ticks, event_capacity):
+def run_to_rest_kernel(
+    pos,
+    vel,
+    w,
+    st,
+    phase,
+    pocket_of,
+    cush,
+    jaws,
+    pockets,
+    centers,
+    length,
+    width,
+    p,
+    dt,
+    max_ticks,
+    event_capacity,
+):
     """A whole shot in one compiled call, so a thread running it holds the GIL only to
     enter and to return (the server's event loop needs it for everything else).
 
@@ -188,8 +226,25 @@ def run_to_rest_kernel(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, c
             frame_on = _grown(frame_on, cap)
         if events.shape[0] - n_ev <= MAX_EVENTS_PER_TICK + 64:
             events = _grown(events, 2 * events.shape[0])
-        n_ev, stalled = run_tick(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets,
-                                 centers, length, width, p, dt, ticks * dt, events, n_ev)
+        n_ev, stalled = run_tick(
+            pos,
+            vel,
+            w,
+            st,
+            phase,
+            pocket_of,
+            cush,
+            jaws,
+            pockets,
+            centers,
+            length,
+            width,
+            p,
+            dt,
+            ticks * dt,
+            events,
+            n_ev,
+        )
         if stalled:
             stalls += 1
         frame_pos[ticks] = pos
@@ -197,14 +252,19 @@ def run_to_rest_kernel(pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, c
         for i in range(n):
             frame_on[ticks, i] = st[i] != POCKETED
         ticks += 1
-    return (frame_pos[:ticks].copy(), frame_cels[:ticks].copy(), frame_on[:ticks].copy(),
-            events[:n_ev].copy(), stalls)
+    return (
+        frame_pos[:ticks].copy(),
+        frame_cels[:ticks].copy(),
+        frame_on[:ticks].copy(),
+        events[:n_ev].copy(),
+        stalls,
+    )
 
 
 @njit(cache=True, nogil=True)
 def _grown(a, rows):
     out = np.empty((rows,) + a.shape[1:], dtype=a.dtype)
-    out[:a.shape[0]] = a
+    out[: a.shape[0]] = a
     return out
 
 

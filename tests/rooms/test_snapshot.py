@@ -6,7 +6,8 @@ import json
 
 from server.engine import Shot, simulate
 from server.rooms.room import Room
-from server.store.snapshot import pending_shot, room_from_dict, room_to_json
+from server.codec import encode
+from server.rooms.snapshot import pending_shot, room_from_snapshot, room_to_snapshot
 
 
 def played_room() -> tuple[Room, list[str]]:
@@ -26,10 +27,11 @@ def played_room() -> tuple[Room, list[str]]:
 
 def test_room_round_trip_keeps_everything_but_tokens_in_clear() -> None:
     room, tokens = played_room()
-    text = room_to_json(room, match_id=5)
+    text = encode(room_to_snapshot(room, match_id=5))
     for token in tokens:
         assert token not in text
-    back, match_id, pending = room_from_dict(json.loads(text))
+    saved = room_from_snapshot(json.loads(text))
+    back, match_id, pending = saved.room, saved.match_id, saved.pending
     assert (match_id, pending) == (5, None)
     assert back.summary() == room.summary()
     assert back.match is not None and room.match is not None
@@ -50,16 +52,17 @@ def test_a_pending_shot_is_saved_with_the_table_before_it_and_replays_the_same()
     before_state = room.match.to_dict()
     shot = Shot(1.0, 5.0, (0.1, 0.1))
     shot_id, before = room.begin_shot(seat, shot)
-    text = room_to_json(room, 5, pending_shot(shot_id, seat, shot))
+    text = encode(room_to_snapshot(room, 5, pending_shot(shot_id, seat, shot)))
     live_result = simulate(room.match.game.table, before, shot)
     room.apply_shot(live_result)  # the server died after this, mid-stream
 
-    back, _, pending = room_from_dict(json.loads(text))
-    assert pending is not None and (pending.id, pending.seat) == (shot_id, seat)
+    saved = room_from_snapshot(json.loads(text))
+    back, pending = saved.room, saved.pending
+    assert pending == (seat, shot) and saved.pending_id == shot_id
     assert back.match is not None and back.match.to_dict() == before_state
     assert back.phase == "aiming"
-    replay = Shot(pending.angle, pending.speed, pending.tip)
-    again_id, again_before = back.begin_shot(pending.seat, replay)
+    replay_seat, replay = pending
+    again_id, again_before = back.begin_shot(replay_seat, replay)
     assert again_id == shot_id
     again = simulate(back.match.game.table, again_before, replay)
     assert again.frames.positions.tobytes() == live_result.frames.positions.tobytes()
@@ -70,6 +73,7 @@ def test_a_pending_shot_is_saved_with_the_table_before_it_and_replays_the_same()
 def test_a_waiting_room_round_trips() -> None:
     room = Room("waiting_room", "nine_ball", created_at=1.5)
     room.join("Ana")
-    back, match_id, pending = room_from_dict(json.loads(room_to_json(room, None)))
-    assert (back.match, match_id, pending) == (None, None, None)
+    saved = room_from_snapshot(json.loads(encode(room_to_snapshot(room, None))))
+    back = saved.room
+    assert (back.match, saved.match_id, saved.pending) == (None, None, None)
     assert back.summary() == room.summary() and back.seats[1] is None

@@ -1,20 +1,26 @@
 """`StoreObserver`: the room observer that records matches, games and shots and saves rooms.
 
-It runs on the event loop, so it only builds the rows (plain JSON, copied from the room at
-that instant) and queues them on the store's thread; nothing here waits for the disk.
+It runs on the event loop, so it only builds the rows (plain data, copied from the room at
+that instant) and queues them on the store's thread; nothing here waits for the disk. Each
+shot is stored with the engine version that played it and the motion that was streamed, so
+a replay shows what was played even after the physics changes.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 from dataclasses import dataclass
 
-from server.engine import BallSet, Shot
-from server.rooms.room import Room
+from server.codec import encode, to_data
+from server.engine import ENGINE_VERSION, BallSet, Shot, Table
+from server.protocol import ShotPlan
+from server.protocol.plan import motion_text
 from server.rules import Outcome
+from server.store import Database
 
-from .database import Database
-from .snapshot import pending_shot, room_to_json
+from .room import Room
+from .snapshot import pending_shot, room_to_snapshot
 
 
 @dataclass
@@ -32,10 +38,14 @@ class StoreObserver:
         self._matches: dict[str, _Tracked] = {}
         self.active = True  # False once the server shuts down: rooms are kept, not deleted
 
-    def adopt(self, room: Room, match_id: int | None) -> None:
+    def room_restored(self, room: Room, match_id: int | None) -> None:
         """A room restored after a restart keeps its match record."""
         if match_id is not None and room.match is not None:
             self._matches[room.room_id] = _Tracked(match_id, room.match.over)
+
+    def room_unreadable(self, room_id: str) -> None:
+        """A saved room that cannot be restored is dropped, so it is not retried forever."""
+        self.db.write(lambda repo: repo.delete_room(room_id), "drop room")
 
     def start(self) -> None:
         """Record again (a new lifespan of the same app)."""
@@ -67,11 +77,11 @@ class StoreObserver:
         if not self.active:
             return
         match_id = self.match_id(room)
-        text = room_to_json(room, match_id, pending_shot(shot_id, seat, shot))
+        text = encode(room_to_snapshot(room, match_id, pending_shot(shot_id, seat, shot)))
         self.db.write(lambda repo: repo.save_room(room.room_id, text), "save room")
 
     def shot_played(self, room: Room, seat: int, shot: Shot, before: BallSet,
-                    outcome: Outcome) -> None:
+                    outcome: Outcome, plan: ShotPlan) -> None:
         if not self.active or room.match is None:
             return
         match = room.match
@@ -79,10 +89,11 @@ class StoreObserver:
         assert match_id is not None and room.shot is not None
         scored = outcome.frame_over and outcome.winner is not None
         game_no = match.games_played + (0 if scored else 1)
-        row = (match_id, room.shot.id, game_no, seat,
-               {"angle": shot.angle, "speed": shot.speed, "tip": list(shot.tip)},
-               _table_fields(match.game.table), before.to_dict(), outcome.to_dict())
-        self.db.write(lambda repo: repo.record_shot(*row), "record shot")
+        row = (match_id, room.shot.id, game_no, seat, to_data(shot),
+               table_fields(match.game.table), before.to_dict(), outcome.to_dict())
+        engine, motion = ENGINE_VERSION, motion_text(plan)
+        self.db.write(lambda repo: repo.record_shot(*row, engine=engine, motion=motion),
+                      "record shot")
         self._scored(room, "shot", outcome)
 
     def outcome(self, room: Room, cause: str, outcome: Outcome) -> None:
@@ -94,7 +105,7 @@ class StoreObserver:
             return
         match_id = self.match_id(room)
         self._finish_if_over(room)
-        text = room_to_json(room, match_id)
+        text = encode(room_to_snapshot(room, match_id))
         self.db.write(lambda repo: repo.save_room(room.room_id, text), "save room")
 
     def room_closed(self, room: Room) -> None:
@@ -133,6 +144,6 @@ class StoreObserver:
         self.db.write(lambda repo: repo.finish_match(*args), "finish match")
 
 
-def _table_fields(table) -> list[float]:
-    return [table.length, table.width, table.ball_radius, table.corner_mouth,
-            table.side_mouth]
+def table_fields(table: Table) -> list[float]:
+    """The table's constructor fields in order: the stored form (`Table.from_fields`)."""
+    return [getattr(table, f.name) for f in dataclasses.fields(table) if f.init]

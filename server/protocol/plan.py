@@ -28,11 +28,6 @@ SOUND_GAP = 0.05  # s: the same contact again within this is one sound
 BallRow = tuple[int, int, int, int]  # id, x_mm, y_mm, cel
 
 
-def encode(payload: dict) -> str:
-    """Compact JSON; NaN is refused (it is not JSON)."""
-    return json.dumps(payload, separators=(",", ":"), allow_nan=False)
-
-
 def message_text(kind: str, seq: int, body: str) -> str:
     """A message from its pre-encoded `body` (JSON without `type` and `seq`): string
     formatting only, so a room adds the sequence number without encoding again."""
@@ -159,7 +154,7 @@ def plan_shot(result: ShotResult, shot_id: int, frame_every: int,
 
 
 def event_body(shot_id: int, event_tick: int, event: Event) -> str:
-    """The JSON of an `event` message without `type` and `seq`: what `encode` gives for
+    """The JSON of an `event` message without `type` and `seq`: what `server.codec.encode` gives for
     {"shot", "tick", "t", "kind", "ids", "speed", "target"}, by string formatting (a shot
     has dozens; json.dumps was a fifth of planning it)."""
     t, speed = round(event.time, 4), round(event.speed, 3)
@@ -204,10 +199,25 @@ def _sounds(events: list[Event], tick: float) -> list[tuple[int, Event]]:
             continue
         last[key] = event.time
         by_tick.setdefault(max(0, math.ceil(event.time / tick - 1e-9)), []).append(event)
-    kept = []
+    kept: list[tuple[int, Event]] = []
     for event_tick, items in by_tick.items():
         items.sort(key=lambda e: (e.kind not in ALWAYS_SENT, -e.speed))
         kept.extend((event_tick, e) for i, e in enumerate(items)
                     if i < MAX_SOUNDS_PER_TICK or e.kind in ALWAYS_SENT)
     kept.sort(key=lambda item: item[1].time)
     return kept
+
+
+def motion_text(plan: ShotPlan) -> str:
+    """The messages a shot streamed, one a line (`at kind body`): what is stored to replay
+    exactly what was shown, whatever engine runs the replay."""
+    return "".join(f"{timed.at!r} {timed.kind} {timed.body}\n" for timed in plan.messages)
+
+
+def motion_messages(text: str) -> list[tuple[float, str, str]]:
+    """The inverse of `motion_text`: (at, kind, body) in sending order."""
+    out = []
+    for line in text.splitlines():
+        at, kind, body = line.split(" ", 2)
+        out.append((float(at), kind, body))
+    return out

@@ -1,23 +1,19 @@
-"""Every WebSocket message as a pydantic model: client intentions in, room news out.
+"""What clients may send: intentions, each a pydantic model.
 
-Client messages are a discriminated union on `type`, validated straight from the raw text
-(`parse_client_message`), strict about extra fields, bounds and NaN/inf. Server messages
-are models too (the protocol doc is written from them); the hot `frame` is built as a plain
-dict by `server.rooms.stream` with the same shape as `FrameMessage`.
+A discriminated union on `type`, validated straight from the raw text
+(`parse_client_message`), strict about extra fields, bounds and NaN/inf: whatever reaches a
+room is already well formed.
 """
 
 from __future__ import annotations
 
+import json
 import math
 from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, TypeAdapter, ValidationError, model_validator
 
-from server.engine import MAX_SPEED, MAX_TIP
-
-PROTOCOL_VERSION = 1
-MAX_ANGLE = 10.0  # radians; any direction fits in [-pi, pi], this only bounds junk
-MAX_CHAT = 200
+from .limits import MAX_ANGLE, MAX_CHAT, MAX_SPEED, MAX_TIP
 
 TipComponent = Annotated[float, Field(ge=-MAX_TIP, le=MAX_TIP)]
 Tip = tuple[TipComponent, TipComponent]
@@ -161,8 +157,6 @@ def parse_client_message(text: str) -> AnyClientMessage:
 
 
 def _type_of(text: str) -> str | None:
-    import json
-
     try:
         value = json.loads(text).get("type")
     except (ValueError, AttributeError):
@@ -170,146 +164,3 @@ def _type_of(text: str) -> str | None:
     return value if value in CLIENT_TYPES else None
 
 
-# ---- server -> client -------------------------------------------------------------------
-
-class ServerMessage(BaseModel):
-    model_config = ConfigDict(extra="forbid")
-
-
-class PlayerInfo(ServerMessage):
-    seat: int
-    name: str
-    connected: bool
-
-
-class GraceInfo(ServerMessage):
-    seat: int
-    remaining: float
-
-
-class Welcome(ServerMessage):
-    type: Literal["welcome"] = "welcome"
-    protocol: int = PROTOCOL_VERSION
-    room_id: str
-    seat: int | None
-    role: Literal["player", "spectator"]
-    name: str | None
-    seq: int
-    tick_hz: int
-    frame_every: int
-    frames_per_message: int = 1
-    server_time: float
-
-
-class AheadFrame(BaseModel):
-    """A later tick sent early inside a `frame` message, to be shown at its own tick."""
-
-    model_config = ConfigDict(extra="forbid")
-    tick: int
-    b: list[tuple[int, int, int, int]]
-
-
-class FrameMessage(ServerMessage):
-    """One streamed tick: `b` holds [id, x_mm, y_mm, cel] for every ball on the table;
-    `ahead` the next ticks of the stream, sent early (`frames_per_message` - 1 of them)."""
-
-    type: Literal["frame"] = "frame"
-    seq: int
-    shot: int
-    tick: int
-    b: list[tuple[int, int, int, int]]
-    ahead: list[AheadFrame] | None = None
-    last: bool | None = None
-
-
-SoundKind = Literal["strike", "ball", "cushion", "jaw", "pocket"]
-
-
-class AlsoEvent(BaseModel):
-    """A later sound of the same stretch of the shot, carried by an `event` message."""
-
-    model_config = ConfigDict(extra="forbid")
-    tick: int
-    t: float
-    kind: SoundKind
-    ids: list[int]
-    speed: float
-    target: int
-
-
-class EventMessage(ServerMessage):
-    """A sound; `also`: the ones that follow within one frame message's span, each to be
-    played at its own `t`."""
-
-    type: Literal["event"] = "event"
-    seq: int
-    shot: int
-    tick: int
-    t: float
-    kind: SoundKind
-    ids: list[int]
-    speed: float
-    target: int
-    also: list[AlsoEvent] | None = None
-
-
-class ShotResultMessage(ServerMessage):
-    type: Literal["shot_result"] = "shot_result"
-    seq: int
-    shot: int | None
-    cause: Literal["shot", "timeout", "concede", "forfeit"]
-    outcome: dict
-    score: list[int]
-    match_over: bool
-    match_winner: int | None
-
-
-class StateMessage(ServerMessage):
-    type: Literal["state"] = "state"
-    seq: int
-    room: dict
-    phase: Literal["waiting", "aiming", "rolling", "over"]
-    table: dict
-    balls: list[tuple[int, int, int, int]]
-    shot: dict | None
-    clock: dict | None
-    grace: list[GraceInfo]
-    match: dict | None
-
-
-class AimRelay(ServerMessage):
-    type: Literal["aim"] = "aim"
-    seat: int
-    angle: float
-    power: float
-    tip: tuple[float, float]
-
-
-class ChatMessage(ServerMessage):
-    type: Literal["chat"] = "chat"
-    seq: int
-    seat: int | None
-    name: str
-    text: str
-    at: float
-
-
-class Presence(ServerMessage):
-    type: Literal["presence"] = "presence"
-    seq: int
-    players: list[PlayerInfo]
-    spectators: int
-    grace: list[GraceInfo]
-
-
-class Pong(ServerMessage):
-    type: Literal["pong"] = "pong"
-    id: int | None
-    server_time: float
-
-
-class ErrorMessage(ServerMessage):
-    type: Literal["error"] = "error"
-    code: str
-    message: str
-    ref: str | None = None

@@ -1,0 +1,43 @@
+"""What routes depend on, as `Annotated` aliases: a route names `Registry` or `Store` in its
+signature instead of reaching into `request.app.state`, so its needs are visible and a test
+can override them (`app.dependency_overrides`)."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+from fastapi import Depends, HTTPException, Request
+from starlette.requests import HTTPConnection
+
+from server.config import Settings
+from server.rooms import LiveRoom, RoomRegistry
+from server.store import Database
+
+
+def get_settings(conn: HTTPConnection) -> Settings:
+    settings: Settings = conn.app.state.settings
+    return settings
+
+
+def get_registry(conn: HTTPConnection) -> RoomRegistry:
+    registry: RoomRegistry = conn.app.state.registry
+    return registry
+
+
+def get_store(conn: HTTPConnection) -> Database:
+    store: Database = conn.app.state.store
+    return store
+
+
+def get_room(room_id: str, request: Request) -> LiveRoom:
+    """The live room of the path's `room_id`, else 404 `unknown_room`."""
+    live = get_registry(request).get(room_id)
+    if live is None:
+        raise HTTPException(404, {"code": "unknown_room", "message": "No such room."})
+    return live
+
+
+SettingsDep = Annotated[Settings, Depends(get_settings)]
+Registry = Annotated[RoomRegistry, Depends(get_registry)]
+Store = Annotated[Database, Depends(get_store)]
+RoomDep = Annotated[LiveRoom, Depends(get_room)]

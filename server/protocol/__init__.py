@@ -1,0 +1,15 @@
+"""The wire protocol, shared by the live rooms and the HTTP API: every message model (in
+and out), the one encoder, the compiled frame codec and the plan of a shot's stream.
+
+It sits below `rooms` and `api` and imports only the engine (for its limits and results).
+"""
+
+from .inbound import AnyClientMessage, BadMessage, parse_client_message
+from .limits import LIMITS, PROTOCOL_VERSION, Limits, StreamRates
+from .plan import BallRow, ShotPlan, StreamFrames, Timed, frame_rows, message_text, plan_shot
+
+__all__ = [
+    "LIMITS", "PROTOCOL_VERSION", "AnyClientMessage", "BadMessage", "BallRow", "Limits",
+    "ShotPlan", "StreamFrames", "StreamRates", "Timed", "frame_rows", "message_text",
+    "parse_client_message", "plan_shot",
+]

@@ -1,0 +1,35 @@
+"""Every bound a client must respect, in one place: the server validates against these and
+sends them in `welcome`, `GET /api/limits` and the match detail, so no client keeps a copy.
+"""
+
+from __future__ import annotations
+
+from pydantic import BaseModel
+
+from server.engine import MAX_SPEED, MAX_TIP
+
+PROTOCOL_VERSION = 1
+MAX_ANGLE = 10.0  # radians; any direction fits in [-pi, pi], this only bounds junk
+MAX_CHAT = 200  # characters of one chat line
+MAX_NAME = 24  # characters of a player's name
+
+
+class Limits(BaseModel):
+    """What a client needs to build valid messages."""
+
+    max_speed: float = MAX_SPEED  # m/s of the cue ball
+    max_tip: float = MAX_TIP  # tip offset, a fraction of the radius
+    max_angle: float = MAX_ANGLE
+    max_name: int = MAX_NAME
+    max_chat: int = MAX_CHAT
+
+
+class StreamRates(BaseModel):
+    """How a shot is streamed: the engine's tick rate and which ticks are sent."""
+
+    tick_hz: int
+    frame_every: int
+    frames_per_message: int
+
+
+LIMITS = Limits()

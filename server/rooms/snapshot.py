@@ -1,0 +1,91 @@
+"""A live room as saved data and back: seats (token hashes only), the match, the shot in
+flight.
+
+Saved after every shot and every change at rest. While a shot is being streamed the saved
+room is the one from *before* the shot plus `pending` (the shot itself): after a restart
+the shot is played again from that start state, which gives the same result bit for bit.
+The saved form is a dataclass turned into JSON by `server.codec`, the same mechanism as
+every other stored type.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Literal
+
+from server.codec import from_data, to_data
+from server.engine import Shot
+from server.rules import Match
+from server.store import PendingShot
+
+from .room import Room, Seat
+
+
+@dataclass(frozen=True)
+class SavedSeat:
+    name: str
+    token_hash: str
+
+
+@dataclass(frozen=True)
+class SavedRoomData:
+    """The stored form (version 1)."""
+
+    version: Literal[1]
+    room_id: str
+    game: str
+    race_to: int
+    shot_clock: float
+    seed: int
+    created_at: float
+    seats: list[SavedSeat | None]
+    match: dict[str, Any] | None  # Match.to_dict()
+    match_id: int | None
+    shots_played: int
+    rematch_votes: list[int]
+    pending: PendingShot | None
+
+
+@dataclass(frozen=True)
+class SavedRoom:
+    """A restored room (every seat disconnected), its match record and the shot to replay."""
+
+    room: Room
+    match_id: int | None
+    pending: tuple[int, Shot] | None  # (seat, shot)
+    pending_id: int | None = None
+
+
+def room_to_snapshot(room: Room, match_id: int | None,
+                     pending: PendingShot | None = None) -> dict[str, Any]:
+    """The room at rest (or just before `pending` was struck), as plain data."""
+    shots_played = room.shots_played if pending is None else pending.id - 1
+    data = SavedRoomData(
+        version=1, room_id=room.room_id, game=room.game, race_to=room.race_to,
+        shot_clock=room.shot_clock, seed=room.seed, created_at=room.created_at,
+        seats=[None if s is None else SavedSeat(s.name, s.token_hash) for s in room.seats],
+        match=room.match.to_dict() if room.match is not None else None,
+        match_id=match_id, shots_played=shots_played,
+        rematch_votes=sorted(room.rematch_votes), pending=pending)
+    result: dict[str, Any] = to_data(data)
+    return result
+
+
+def room_from_snapshot(data: dict[str, Any]) -> SavedRoom:
+    """The inverse of `room_to_snapshot`; raises ValueError on data it cannot read."""
+    if data.get("version") != 1:
+        raise ValueError(f"unknown room snapshot version {data.get('version')!r}")
+    saved = from_data(SavedRoomData, data)
+    room = Room(saved.room_id, saved.game, race_to=saved.race_to,
+                shot_clock=saved.shot_clock, seed=saved.seed, created_at=saved.created_at)
+    room.seats = [None if s is None else Seat(s.name, s.token_hash) for s in saved.seats]
+    room.match = Match.from_dict(saved.match) if saved.match is not None else None
+    room.shots_played = saved.shots_played
+    room.rematch_votes = set(saved.rematch_votes)
+    p = saved.pending
+    pending = None if p is None else (p.seat, Shot(p.angle, p.speed, p.tip))
+    return SavedRoom(room, saved.match_id, pending, None if p is None else p.id)
+
+
+def pending_shot(shot_id: int, seat: int, shot: Shot) -> PendingShot:
+    return PendingShot(shot_id, seat, shot.angle, shot.speed, (shot.tip[0], shot.tip[1]))
