@@ -19,8 +19,9 @@ from server.protocol.plan import motion_messages
 from server.rules import Outcome
 from server.store import MatchRecord, ShotRecord
 
-# The engine that played the shots stored before engine versions were recorded.
-FIRST_RECORDED_ENGINE = ENGINE_VERSION
+# The engine that played the shots stored before engine versions were recorded (a literal:
+# it must not follow ENGINE_VERSION when the physics changes).
+FIRST_RECORDED_ENGINE = "1+343d34160186"
 
 
 class EngineChanged(Exception):
