@@ -323,7 +323,8 @@ class Room:
             return match.timeout(seat)
 
     def forfeit(self, seat: int, reason: str) -> Outcome:
-        """`seat` loses the current frame (issue 5: an absent player forfeits the frame)."""
+        """`seat` loses the current frame: a player who stayed away forfeits the frame, not
+        the match."""
         match, seat = self._require_player(seat)
         with _rules():
             return match.forfeit_game(seat, reason)

@@ -1,1 +1,1 @@
-"""Storage, restart recovery and fault tests (issue 7)."""
+"""Storage, restart recovery and fault tests."""
