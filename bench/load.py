@@ -116,7 +116,7 @@ def free_port() -> int:
 def start_server(port: int, db: Path, log: Path, deflate: bool) -> subprocess.Popen:
     """`deflate`: the server accepts permessage-deflate (`POOL_WS_DEFLATE`), the clients
     offer it."""
-    env = {**os.environ, "BILLIARDS_DB": str(db), "POOL_MAX_ROOMS": "5000",
+    env = {**os.environ, "POOL_DB_PATH": str(db), "POOL_MAX_ROOMS": "5000",
            "POOL_WS_DEFLATE": "1" if deflate else "0"}
     out = log.open("w")
     return subprocess.Popen([sys.executable, "-m", "server", "--host", "127.0.0.1",
