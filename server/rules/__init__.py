@@ -6,11 +6,21 @@ exported here are the contract with the room (see docs/rules.md).
 
 from .errors import IllegalActionError, RulesError
 from .game import Game
+from .kinds import GAME_KINDS
 from .match import Match
-from .options import GAME_KINDS, RuleOptions
+from .options import RuleOptions
 from .outcome import ANYWHERE, BEHIND_HEAD_STRING, Decision, Foul, Outcome
 
 __all__ = [
-    "ANYWHERE", "BEHIND_HEAD_STRING", "GAME_KINDS", "Decision", "Foul", "Game",
-    "IllegalActionError", "Match", "Outcome", "RuleOptions", "RulesError",
+    "ANYWHERE",
+    "BEHIND_HEAD_STRING",
+    "GAME_KINDS",
+    "Decision",
+    "Foul",
+    "Game",
+    "IllegalActionError",
+    "Match",
+    "Outcome",
+    "RuleOptions",
+    "RulesError",
 ]

@@ -29,19 +29,23 @@ def no_contact(name: str) -> Foul:
 
 
 def wrong_ball_first(name: str, hit: int, expected: str) -> Foul:
-    return Foul("wrong_ball_first",
-                f"{name} hit {ball(hit)} first; the first ball hit must be {expected}.")
+    return Foul(
+        "wrong_ball_first", f"{name} hit {ball(hit)} first; the first ball hit must be {expected}."
+    )
 
 
 def no_rail(name: str) -> Foul:
-    return Foul("no_rail",
-                f"After {name}'s cue ball hit a ball, no ball was pocketed or reached a rail.")
+    return Foul(
+        "no_rail", f"After {name}'s cue ball hit a ball, no ball was pocketed or reached a rail."
+    )
 
 
 def illegal_break(name: str, to_rail: int) -> Foul:
-    return Foul("illegal_break",
-                f"{name}'s break pocketed no ball and drove only {to_rail} object "
-                f"ball{'s' if to_rail != 1 else ''} to a rail (four are needed).")
+    return Foul(
+        "illegal_break",
+        f"{name}'s break pocketed no ball and drove only {to_rail} object "
+        f"ball{'s' if to_rail != 1 else ''} to a rail (four are needed).",
+    )
 
 
 def shot_clock(name: str) -> Foul:

@@ -3,28 +3,60 @@
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
 
+from server.codec import from_data, to_data
 from server.engine import ShotResult, Table
 
 from .errors import IllegalActionError
-from .game import PRACTICE, Game, _table_fields
+from .game import Game
 from .options import DEFAULT_OPTIONS, RuleOptions
 from .outcome import Outcome
+from .stored import StoredTable
+
+GAME_SEED_STEP = 1009  # each game of a match gets its own seed, reproducibly
 
 
+@dataclass(init=False, eq=False)
 class Match:
     """A race to `race_to` games; the break alternates, seat `first_breaker` breaks first.
 
-    Practice is a match that never ends: its one game never finishes.
+    Practice is a match that never ends: its one game never finishes. The fields are the
+    whole state and its stored form (`to_dict`); `table` None means the game's default.
     """
 
-    def __init__(self, kind: str, players: tuple[str, str] | tuple[str], race_to: int = 1,
-                 seed: int = 0, options: RuleOptions = DEFAULT_OPTIONS,
-                 table: Table | None = None, first_breaker: int = 0) -> None:
+    kind: str
+    players: tuple[str, ...]
+    race_to: int
+    seed: int
+    options: RuleOptions
+    table: StoredTable | None
+    first_breaker: int
+    score: list[int]
+    over: bool
+    winner: int | None
+    reason: str | None
+    games_played: int
+    game: Game
+
+    def __init__(
+        self,
+        kind: str,
+        players: Sequence[str],
+        race_to: int = 1,
+        seed: int = 0,
+        options: RuleOptions = DEFAULT_OPTIONS,
+        table: Table | None = None,
+        first_breaker: int = 0,
+    ) -> None:
+        """A new match, its first game racked. (Rooms start matches this way; a stored
+        match comes back through `from_dict`, which sets the fields as they were.)"""
         if not isinstance(race_to, int) or isinstance(race_to, bool) or race_to < 1:
             raise ValueError("race_to must be a whole number of games, at least 1")
         self.kind = kind
-        self.players: tuple[str, ...] = tuple(players)
+        self.players = tuple(players)
         self.race_to = race_to
         self.seed = seed
         self.options = options
@@ -35,17 +67,22 @@ class Match:
     def _start(self) -> None:
         self.score = [0] * len(self.players)
         self.over = False
-        self.winner: int | None = None
-        self.reason: str | None = None
+        self.winner = None
+        self.reason = None
         self.games_played = 0
         self.game = self._new_game()
 
     def _new_game(self) -> Game:
         """Game k (from 0) is broken by the first breaker when k is even, else the other."""
         n = self.games_played
-        breaker = 0 if self.kind == PRACTICE else (self.first_breaker + n) % 2
-        return Game(self.kind, self.players, breaker=breaker, table=self.table,
-                    seed=self.seed + 1009 * n, options=self.options)
+        return Game.new(
+            self.kind,
+            self.players,
+            breaker=(self.first_breaker + n) % len(self.players),
+            table=self.table,
+            seed=self.seed + GAME_SEED_STEP * n,
+            options=self.options,
+        )
 
     def _check_open(self, code: str = "game_over") -> None:
         if self.over:
@@ -61,8 +98,10 @@ class Match:
         if self.score[winner] >= self.race_to or forfeit is not None:
             self.over, self.winner = True, winner
             self.reason = forfeit or f"{self.players[winner]} reached {self.race_to}."
-            line = (f"{self.players[winner]} wins the match "
-                    f"{self.score[winner]}-{self.score[1 - winner]}.")
+            line = (
+                f"{self.players[winner]} wins the match "
+                f"{self.score[winner]}-{self.score[1 - winner]}."
+            )
         else:
             line = f"Score {self.score[0]}-{self.score[1]}."
         return self._relay(dataclasses.replace(outcome, message=f"{outcome.message} {line}"))
@@ -96,14 +135,24 @@ class Match:
         """`seat` loses the match (e.g. left and did not come back); `reason` says why."""
         self._check_open()
         if self.game.over:  # between games: the match ends on the current score
-            if self.kind == PRACTICE or seat not in (0, 1):
+            if len(self.players) != 2 or seat not in (0, 1):
                 raise IllegalActionError("not_your_turn", "Only a seated player can forfeit.")
             winner = 1 - seat
             self.over, self.winner, self.reason = True, winner, reason
-            return self._relay(Outcome(
-                shooter=seat, pocketed=(), fouls=(), continues=False, next_turn=winner,
-                ball_in_hand=None, frame_over=True, winner=winner, reason=reason,
-                message=f"{reason} {self.players[winner]} wins the match."))
+            return self._relay(
+                Outcome(
+                    shooter=seat,
+                    pocketed=(),
+                    fouls=(),
+                    continues=False,
+                    next_turn=winner,
+                    ball_in_hand=None,
+                    frame_over=True,
+                    winner=winner,
+                    reason=reason,
+                    message=f"{reason} {self.players[winner]} wins the match.",
+                )
+            )
         return self._scored(self.game.resign(seat, reason), forfeit=reason)
 
     def next_game(self) -> Game:
@@ -116,48 +165,30 @@ class Match:
 
     def rematch(self) -> None:
         """A new match between the same players, score 0-0; the other seat breaks first."""
-        if self.kind != PRACTICE:
-            self.first_breaker = 1 - self.first_breaker
+        self.first_breaker = (self.first_breaker + 1) % len(self.players)
         self.seed += 1
         self._start()
 
-    def to_dict(self) -> dict:
-        """Everything needed to rebuild this match exactly, the current game included."""
-        table = self.table
-        return {
-            "kind": self.kind, "players": list(self.players), "race_to": self.race_to,
-            "seed": self.seed, "options": dataclasses.asdict(self.options),
-            "table": _table_fields(table) if table is not None else None,
-            "first_breaker": self.first_breaker, "score": list(self.score),
-            "over": self.over, "winner": self.winner, "reason": self.reason,
-            "games_played": self.games_played, "game": self.game.to_dict(),
-        }
+    def to_dict(self) -> dict[str, Any]:
+        """The stored form, the current game included: `server.codec.to_data(self)`."""
+        return to_data(self)
 
     @classmethod
-    def from_dict(cls, data: dict) -> Match:
-        """The inverse of `to_dict`."""
-        match = cls.__new__(cls)
-        match.kind = data["kind"]
-        match.players = tuple(data["players"])
-        match.race_to, match.seed = data["race_to"], data["seed"]
-        match.options = RuleOptions(**data["options"])
-        match.table = Table(*data["table"]) if data["table"] is not None else None
-        match.first_breaker = data["first_breaker"]
-        match.score = list(data["score"])
-        match.over, match.winner, match.reason = data["over"], data["winner"], data["reason"]
-        match.games_played = data["games_played"]
-        match.game = Game.from_dict(data["game"])
-        return match
+    def from_dict(cls, data: dict[str, Any]) -> Match:
+        """The inverse of `to_dict`; also reads what the code before the codec stored."""
+        return from_data(cls, data)
 
-    def public_state(self) -> dict:
+    def public_state(self) -> dict[str, Any]:
         """The game's public state plus the score, the race and the match result."""
         state = self.game.public_state()
-        state.update({
-            "score": list(self.score),
-            "race_to": self.race_to,
-            "games_played": self.games_played,
-            "match_over": self.over,
-            "match_winner": self.winner,
-            "match_reason": self.reason,
-        })
+        state.update(
+            {
+                "score": list(self.score),
+                "race_to": self.race_to,
+                "games_played": self.games_played,
+                "match_over": self.over,
+                "match_winner": self.winner,
+                "match_reason": self.reason,
+            }
+        )
         return state

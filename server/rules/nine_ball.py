@@ -1,4 +1,4 @@
-"""9-ball, WPA World Standardized Rules, judged from a shot's facts.
+"""9-ball, WPA World Standardized Rules, judged from a position and a shot's facts.
 
 The lowest-numbered ball must be hit first; any ball pocketed on a legal shot counts; the 9
 pocketed legally wins, on the break or in a combination; an illegally pocketed 9 is
@@ -7,45 +7,32 @@ re-spotted; three fouls in a row lose.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from collections.abc import Sequence
 
-from server.engine import BallSet
+from server.engine import CUE
 
 from . import fouls
-from .outcome import ANYWHERE, Decision
+from .clock import time_foul
+from .outcome import ANYWHERE, BEHIND_HEAD_STRING, Decision
+from .position import Position
 from .ruling import Ruling
 from .shotfacts import ShotFacts
 from .words import ball
-
-if TYPE_CHECKING:
-    from .game import Game
 
 NINE = 9
 FOULS_TO_LOSE = 3
 PUSH_OUT_OPTIONS = ("shoot", "pass")
 
 
-def lowest_ball(balls: BallSet) -> int | None:
-    on = [b for b in balls.on_table_ids() if b != 0]
+def lowest_ball(on_table: Sequence[int]) -> int | None:
+    on = [b for b in on_table if b != CUE]
     return min(on) if on else None
 
 
-def judge(game: Game, seat: int, facts: ShotFacts) -> Ruling:
-    if game.push_out_declared:
-        r = judge_push_out(game, seat, facts)
-    else:
-        r = judge_shot(game, seat, facts)
-    if r.fouls and game.fouls_in_row[seat] + 1 >= FOULS_TO_LOSE:
-        name = game.players[seat]
-        r.winner, r.reason = 1 - seat, f"{name} fouled three times in a row."
-        r.decision, r.pending = None, None
-    return r
-
-
-def judge_push_out(game: Game, seat: int, facts: ShotFacts) -> Ruling:
+def judge_push_out(pos: Position, facts: ShotFacts) -> Ruling:
     """A push out: no ball need be hit and no rail reached; a scratch is still a foul.
     Balls pocketed stay down, but a 9 is spotted; then the opponent shoots or passes."""
-    name, opp = game.players[seat], 1 - seat
+    name, opp = pos.shooter, pos.opponent
     r = Ruling()
     if facts.scratch:
         r.fouls.append(fouls.scratch(name))
@@ -56,43 +43,102 @@ def judge_push_out(game: Game, seat: int, facts: ShotFacts) -> Ruling:
         return r
     r.notes.append(f"{name} pushed out.")
     r.pending = "push_out"
-    r.decision = Decision(opp, PUSH_OUT_OPTIONS,
-                          f"{game.players[opp]}, shoot from here or pass the shot back "
-                          f"to {name}?")
+    r.decision = Decision(
+        opp,
+        PUSH_OUT_OPTIONS,
+        f"{pos.players[opp]}, shoot from here or pass the shot back to {name}?",
+    )
     return r
 
 
-def judge_shot(game: Game, seat: int, facts: ShotFacts) -> Ruling:
+def judge_shot(pos: Position, facts: ShotFacts) -> Ruling:
     """The break (the 1 first, then a ball pocketed or four to a rail) or any later shot
     (the lowest ball first, then a ball pocketed or a rail)."""
-    name = game.players[seat]
-    lowest = lowest_ball(game.balls)
+    name, breaking = pos.shooter, pos.breaking
+    lowest = lowest_ball(pos.on_table)
     r = Ruling()
     if facts.first_contact is None:
         r.fouls.append(fouls.no_contact(name))
     else:
         if facts.first_contact != lowest:
-            r.fouls.append(fouls.wrong_ball_first(name, facts.first_contact,
-                                                  ball(lowest or NINE)))
-        if (not game.breaking and not facts.rail_after_contact
-                and not facts.any_pocketed):
+            r.fouls.append(fouls.wrong_ball_first(name, facts.first_contact, ball(lowest or NINE)))
+        if not breaking and not facts.rail_after_contact and not facts.any_pocketed:
             r.fouls.append(fouls.no_rail(name))
-    if game.breaking and not facts.any_pocketed and len(facts.balls_to_rail) < 4:
+    if breaking and not facts.any_pocketed and len(facts.balls_to_rail) < 4:
         r.fouls.append(fouls.illegal_break(name, len(facts.balls_to_rail)))
     if facts.scratch:
         r.fouls.append(fouls.scratch(name))
-    r.push_out_next = game.breaking
+    r.push_out_next = breaking
     if NINE in facts.pocketed:
         if r.fouls:
             r.spot = (NINE,)
         else:
-            how = ("on the break" if game.breaking else
-                   "in a combination" if facts.first_contact != NINE else "")
-            r.winner = seat
-            r.reason = f"{name} pocketed the 9 {how}".rstrip() + "."
+            if breaking:
+                how = " on the break"
+            elif facts.first_contact != NINE:
+                how = " in a combination"
+            else:
+                how = ""
+            r.winner, r.reason = pos.turn, f"{name} pocketed the 9{how}."
             return r
     if r.fouls:
         r.ball_in_hand = ANYWHERE
     else:
         r.continues = facts.any_pocketed
     return r
+
+
+def lose_on_last_foul(pos: Position, r: Ruling) -> Ruling:
+    """The three-foul rule, for shots and the shot clock alike: a foul that makes
+    `FOULS_TO_LOSE` in a row loses the game, whatever else the shot did."""
+    if r.fouls and pos.fouls_in_row[pos.turn] + 1 >= FOULS_TO_LOSE:
+        r.winner, r.reason = pos.opponent, f"{pos.shooter} fouled three times in a row."
+        r.decision, r.pending = None, None
+    return r
+
+
+class NineBallRules:
+    """9-ball as a `kinds.GameRules` strategy."""
+
+    kind = "nine_ball"
+    seats = 2
+    rack = "nine_ball"
+    breaks = True
+    opening_ball_in_hand = BEHIND_HEAD_STRING
+    rerack_at_will = False
+    spot_choice: tuple[int, ...] = ()
+
+    def legal_targets(self, pos: Position) -> list[int]:
+        """The lowest ball; on a push out, any ball."""
+        if pos.push_out_declared:
+            return pos.object_balls
+        lowest = lowest_ball(pos.on_table)
+        return [lowest] if lowest is not None else []
+
+    def balls_left(self, pos: Position) -> list[list[int]] | None:
+        """Both seats play the same balls: every object ball on the table."""
+        left = pos.object_balls
+        return [left, list(left)]
+
+    def requires_call(self, pos: Position) -> bool:
+        return False
+
+    def judge(self, pos: Position, facts: ShotFacts) -> Ruling:
+        judged = judge_push_out if pos.push_out_declared else judge_shot
+        return lose_on_last_foul(pos, judged(pos, facts))
+
+    def timeout(self, pos: Position) -> Ruling:
+        """A foul; on the break it passes the break and cannot lose the game."""
+        r = time_foul(pos)
+        return r if pos.breaking else lose_on_last_foul(pos, r)
+
+    def count_fouls(self, fouls_in_row: Sequence[int], seat: int, fouled: bool) -> list[int]:
+        """A foul adds one to the shooter's count; a legal shot resets it."""
+        counts = list(fouls_in_row)
+        counts[seat] = counts[seat] + 1 if fouled else 0
+        return counts
+
+    def foul_warning(self, fouls_in_row: Sequence[int], seat: int, name: str) -> str | None:
+        if fouls_in_row[seat] == FOULS_TO_LOSE - 1:
+            return f"{name} is on two fouls: a third foul in a row loses."
+        return None

@@ -4,8 +4,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-GAME_KINDS = ("eight_ball", "nine_ball", "practice")
-
 
 @dataclass(frozen=True)
 class RuleOptions:

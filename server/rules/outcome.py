@@ -1,8 +1,15 @@
-"""What the rules tell the players: fouls, pending choices and the outcome of a shot."""
+"""What the rules tell the players: fouls, pending choices and the outcome of a shot.
+
+Plain frozen dataclasses: their fields are the data sent to browsers and stored, through
+`server.codec`.
+"""
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
+from typing import Any
+
+from server.codec import from_data, to_data
 
 ANYWHERE = "anywhere"
 BEHIND_HEAD_STRING = "behind_head_string"
@@ -32,12 +39,12 @@ class Decision:
     options: tuple[str, ...]
     prompt: str
 
-    def to_dict(self) -> dict:
-        return {"seat": self.seat, "options": list(self.options), "prompt": self.prompt}
+    def to_dict(self) -> dict[str, Any]:
+        return to_data(self)
 
     @classmethod
-    def from_dict(cls, data: dict) -> Decision:
-        return cls(int(data["seat"]), tuple(data["options"]), str(data["prompt"]))
+    def from_dict(cls, data: dict[str, Any]) -> Decision:
+        return from_data(cls, data)
 
 
 @dataclass(frozen=True)
@@ -66,24 +73,11 @@ class Outcome:
     spotted: tuple[int, ...] = ()
     decision: Decision | None = None
 
-    def to_dict(self) -> dict:
-        """Plain JSON-able data (tuples become lists)."""
-        data = asdict(self)
-        data["pocketed"] = list(self.pocketed)
-        data["spotted"] = list(self.spotted)
-        data["fouls"] = [{"code": f.code, "message": f.message} for f in self.fouls]
-        data["decision"] = self.decision.to_dict() if self.decision else None
-        return data
+    def to_dict(self) -> dict[str, Any]:
+        """Plain JSON-able data, as browsers get it in `shot_result`."""
+        return to_data(self)
 
     @classmethod
-    def from_dict(cls, data: dict) -> Outcome:
+    def from_dict(cls, data: dict[str, Any]) -> Outcome:
         """The inverse of `to_dict` (for stored games)."""
-        decision = data.get("decision")
-        return cls(
-            shooter=data["shooter"], pocketed=tuple(data["pocketed"]),
-            fouls=tuple(Foul(f["code"], f["message"]) for f in data["fouls"]),
-            continues=data["continues"], next_turn=data["next_turn"],
-            ball_in_hand=data["ball_in_hand"], frame_over=data["frame_over"],
-            winner=data["winner"], reason=data["reason"], message=data["message"],
-            spotted=tuple(data.get("spotted", ())),
-            decision=Decision.from_dict(decision) if decision else None)
+        return from_data(cls, data)

@@ -1,7 +1,7 @@
 """`Ruling`: what a game's rules decided about one shot, before the game applies it.
 
-The rule modules (`eight_ball`, `nine_ball`) only judge; `Game` owns the state and applies
-the ruling, so every kind of game changes state the same way.
+The strategies (`kinds.GameRules`) only judge a frozen `Position`; `Game` owns the state and
+applies the ruling, so every kind of game changes state the same way.
 """
 
 from __future__ import annotations
@@ -17,8 +17,9 @@ class Ruling:
     winner / reason: the game ends. spot: object balls to put back on the table.
     groups: groups decided on this shot (8-ball). decision / pending: a choice to make now
     and its kind ("eight_on_break", "illegal_break", "push_out"). ball_in_hand: for the
-    next player (after fouls, or once the decision is taken). notes: sentences to show.
-    push_out_next: 9-ball, the next shot may be a push out.
+    next player (or once the decision is taken). notes: sentences to show.
+    push_out_next: 9-ball, the next shot may be a push out. break_passes_to: the next shot
+    is a break again, by this seat (the shot clock ran out on the break).
     """
 
     fouls: list[Foul] = field(default_factory=list)
@@ -32,3 +33,4 @@ class Ruling:
     ball_in_hand: str | None = None
     notes: list[str] = field(default_factory=list)
     push_out_next: bool = False
+    break_passes_to: int | None = None

@@ -7,9 +7,9 @@ from .helpers import TABLE
 
 @pytest.fixture
 def eight() -> Game:
-    return Game("eight_ball", ("Ana", "Bob"), table=TABLE)
+    return Game.new("eight_ball", ("Ana", "Bob"), table=TABLE)
 
 
 @pytest.fixture
 def nine() -> Game:
-    return Game("nine_ball", ("Ana", "Bob"), table=TABLE)
+    return Game.new("nine_ball", ("Ana", "Bob"), table=TABLE)

@@ -28,8 +28,7 @@ def crafted(before: BallSet, *events: Event) -> ShotResult:
     """A ShotResult whose final table is `before` with the balls of the pocket events
     dropped; event times increase in the order given."""
     timed = [Event(0.0, "strike", (0,), 2.0)]
-    timed += [Event(0.01 * (k + 1), e.kind, e.ids, e.speed, e.target)
-              for k, e in enumerate(events)]
+    timed += [Event(0.01 * (k + 1), e.kind, e.ids, e.speed, e.target) for k, e in enumerate(events)]
     final = before.copy()
     for e in events:
         if e.kind == "pocket":
@@ -38,8 +37,9 @@ def crafted(before: BallSet, *events: Event) -> ShotResult:
             final.pockets[row] = e.target
             final.positions[row] = TABLE.pockets[e.target].center
     n = len(before)
-    frames = FrameSequence(1 / 120, np.empty((0, n, 2)), np.empty((0, n), dtype=np.int64),
-                           np.empty((0, n), dtype=bool))
+    frames = FrameSequence(
+        1 / 120, np.empty((0, n, 2)), np.empty((0, n), dtype=np.int64), np.empty((0, n), dtype=bool)
+    )
     return ShotResult(before.ids.copy(), frames, timed, final)
 
 
@@ -61,8 +61,9 @@ def arrange(game: Game, placement: dict[int, tuple[float, float]]) -> None:
     game.balls = balls
 
 
-def straight_in(ball: int, pocket: int = 0, dist: float = 0.25,
-                gap: float = 0.2) -> tuple[dict[int, tuple[float, float]], Shot]:
+def straight_in(
+    ball: int, pocket: int = 0, dist: float = 0.25, gap: float = 0.2
+) -> tuple[dict[int, tuple[float, float]], Shot]:
     """Object ball `dist` from the pocket mouth, cue ball `gap` behind it, a draw shot
     straight in (the cue ball comes back)."""
     p = TABLE.pockets[pocket]

@@ -47,8 +47,9 @@ def test_legal_break_by_pocketing_a_ball_keeps_the_breaker_at_the_table(eight: G
     outcome = eight.apply(0, crafted(eight.balls, hit(0, 1), pot(1, 2)))
     assert outcome.fouls == () and outcome.continues and outcome.next_turn == 0
     assert eight.groups is None  # a ball on the break does not choose a group
-    assert outcome.message == ("Ana pocketed the 1. Legal break. The table is open. "
-                               "Ana shoots again.")
+    assert outcome.message == (
+        "Ana pocketed the 1. Legal break. The table is open. Ana shoots again."
+    )
 
 
 def test_legal_break_with_four_balls_to_a_rail_passes_the_turn(eight: Game) -> None:
@@ -86,8 +87,9 @@ def test_break_scratch_gives_ball_in_hand_anywhere(eight: Game) -> None:
     outcome = eight.apply(0, crafted(eight.balls, hit(0, 1), pot(3, 0), pot(0, 5)))
     assert [f.code for f in outcome.fouls] == ["scratch"]
     assert outcome.next_turn == 1 and outcome.ball_in_hand == ANYWHERE
-    assert outcome.message == ("Foul: scratch. Ana pocketed the 3. Legal break. The table is "
-                               "open. Ball in hand for Bob.")
+    assert outcome.message == (
+        "Foul: scratch. Ana pocketed the 3. Legal break. The table is open. Ball in hand for Bob."
+    )
     assert 3 not in eight.balls.on_table_ids()  # balls pocketed on the break stay down
     assert eight.groups is None
     with pytest.raises(IllegalActionError) as err:
@@ -98,8 +100,12 @@ def test_break_scratch_gives_ball_in_hand_anywhere(eight: Game) -> None:
 
 
 def test_break_scratch_behind_head_string_is_a_room_option() -> None:
-    game = Game("eight_ball", ("Ana", "Bob"), table=TABLE,
-                options=RuleOptions(break_scratch_behind_head_string=True))
+    game = Game.new(
+        "eight_ball",
+        ("Ana", "Bob"),
+        table=TABLE,
+        options=RuleOptions(break_scratch_behind_head_string=True),
+    )
     outcome = game.apply(0, crafted(game.balls, hit(0, 1), pot(3, 0), pot(0, 5)))
     assert outcome.ball_in_hand == BEHIND_HEAD_STRING
     assert outcome.message.endswith("Ball in hand behind the head string for Bob.")
@@ -168,8 +174,9 @@ def test_own_group_must_be_hit_first(eight: Game) -> None:
     solids_for_ana(eight)
     outcome = eight.apply(0, crafted(eight.balls, hit(0, 9), hit(9, 3), pot(3, 0)))
     assert [f.code for f in outcome.fouls] == ["wrong_ball_first"]
-    assert outcome.fouls[0].message == ("Ana hit the 9 first; the first ball hit must be one "
-                                        "of the solids.")
+    assert outcome.fouls[0].message == (
+        "Ana hit the 9 first; the first ball hit must be one of the solids."
+    )
     assert outcome.next_turn == 1 and outcome.ball_in_hand == ANYWHERE
     assert 3 not in eight.balls.on_table_ids()  # pocketed balls stay down
 
@@ -263,8 +270,10 @@ def test_real_eight_in_the_called_pocket_wins(eight: Game) -> None:
     eight.call_pocket(0, 0)
     outcome = eight.apply(0, simulate(TABLE, eight.balls, shot))
     assert outcome.frame_over and outcome.winner == 0 and eight.over
-    assert outcome.message == ("Ana pocketed the 8. Ana pocketed the 8 in the called bottom "
-                               "left pocket. Ana wins the game.")
+    assert outcome.message == (
+        "Ana pocketed the 8. Ana pocketed the 8 in the called bottom "
+        "left pocket. Ana wins the game."
+    )
     with pytest.raises(IllegalActionError) as err:
         eight.check_shot(1)
     assert err.value.code == "game_over"
@@ -277,15 +286,17 @@ def test_real_eight_in_an_uncalled_pocket_loses(eight: Game) -> None:
     eight.call_pocket(0, 5)
     outcome = eight.apply(0, simulate(TABLE, eight.balls, shot))
     assert outcome.winner == 1
-    assert outcome.reason == ("Ana pocketed the 8 in the bottom left pocket, not the called "
-                              "top left pocket.")
+    assert outcome.reason == (
+        "Ana pocketed the 8 in the bottom left pocket, not the called top left pocket."
+    )
 
 
 def test_eight_before_the_group_is_cleared_loses(eight: Game) -> None:
     solids_for_ana(eight)
     outcome = eight.apply(0, crafted(eight.balls, hit(0, 3), hit(3, 8), pot(8, 0)))
-    assert outcome.winner == 1 and outcome.reason == ("Ana pocketed the 8 before clearing the "
-                                                      "solids.")
+    assert outcome.winner == 1 and outcome.reason == (
+        "Ana pocketed the 8 before clearing the solids."
+    )
 
 
 def test_eight_on_an_open_table_after_the_break_loses(eight: Game) -> None:

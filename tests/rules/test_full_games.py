@@ -45,7 +45,7 @@ def real_break(game: Game, seat: int) -> None:
 
 
 def test_full_eight_ball_game() -> None:
-    game = Game("eight_ball", ("Ana", "Bob"), seed=3, table=TABLE)
+    game = Game.new("eight_ball", ("Ana", "Bob"), seed=3, table=TABLE)
     real_break(game, 0)
     while game.decision is not None:
         game.decide(game.decision.seat, game.decision.options[0])
@@ -89,14 +89,16 @@ def test_full_eight_ball_game_through_match() -> None:
 
 
 def test_full_nine_ball_game_with_push_out_and_foul() -> None:
-    game = Game("nine_ball", ("Ana", "Bob"), seed=2, table=TABLE)
+    game = Game.new("nine_ball", ("Ana", "Bob"), seed=2, table=TABLE)
     real_break(game, 0)
     assert game.push_out_available
     pusher = game.turn
     game.declare_push_out(pusher)
     cue = game.balls.position_of(0)
-    game.apply(pusher, simulate(TABLE, game.balls, Shot(math.pi / 2 if cue[1] < 0.6
-                                                        else -math.pi / 2, 0.5)))
+    game.apply(
+        pusher,
+        simulate(TABLE, game.balls, Shot(math.pi / 2 if cue[1] < 0.6 else -math.pi / 2, 0.5)),
+    )
     assert game.decision is not None and game.decision.options == ("shoot", "pass")
     taker = 1 - pusher
     game.decide(taker, "shoot")

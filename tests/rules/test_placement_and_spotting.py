@@ -75,8 +75,7 @@ def test_spot_behind_the_foot_spot_when_taken() -> None:
 def test_spot_in_front_when_the_line_behind_is_full() -> None:
     fx, fy = TABLE.foot_spot
     step = 2 * R + 0.001
-    placement = {k + 1: (fx + k * step, fy) for k in range(12)
-                 if fx + k * step <= TABLE.length - R}
+    placement = {k + 1: (fx + k * step, fy) for k in range(12) if fx + k * step <= TABLE.length - R}
     assert placement[max(placement)][0] + step > TABLE.length - R  # the line is full
     placement[0] = (0.5, 0.5)
     placement[15] = (0.1, 0.1)

@@ -102,7 +102,8 @@ def check_possible(game: Game) -> None:
             assert not (left & SOLIDS and left & STRIPES and 8 in left)
         if game.requires_call:
             assert game.groups is None or not left & (
-                SOLIDS if game.groups[game.turn] == "solids" else STRIPES)
+                SOLIDS if game.groups[game.turn] == "solids" else STRIPES
+            )
     if game.kind == "nine_ball" and game.over:
         assert 9 not in left or max(game.fouls_in_row) >= 3
     if game.kind == "practice":
@@ -110,11 +111,14 @@ def check_possible(game: Game) -> None:
 
 
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(kind=st.sampled_from(["eight_ball", "nine_ball", "practice"]),
-       seed=st.integers(0, 5), data=st.data())
+@given(
+    kind=st.sampled_from(["eight_ball", "nine_ball", "practice"]),
+    seed=st.integers(0, 5),
+    data=st.data(),
+)
 def test_random_legal_actions_never_reach_an_impossible_state(kind, seed, data) -> None:
     players = ("Ana",) if kind == "practice" else ("Ana", "Bob")
-    game = Game(kind, players, table=TABLE, seed=seed)
+    game = Game.new(kind, players, table=TABLE, seed=seed)
     check_possible(game)
     for _ in range(STEPS):
         if game.over:

@@ -27,8 +27,9 @@ def test_a_rail_counts_only_after_the_first_contact() -> None:
 
 def test_distinct_balls_to_a_rail_and_the_cue_ball_pocket() -> None:
     balls = BallSet.place({0: (0.5, 0.5), 1: (1.0, 0.5), 2: (1.5, 0.5)})
-    facts = shot_facts(balls, crafted(balls, hit(0, 1), rail(1), rail(1), rail(2), rail(0),
-                                      pot(0, 4)))
+    facts = shot_facts(
+        balls, crafted(balls, hit(0, 1), rail(1), rail(1), rail(2), rail(0), pot(0, 4))
+    )
     assert facts.balls_to_rail == frozenset({1, 2})
     assert facts.scratch and facts.pockets == {0: 4} and facts.pocketed == ()
 

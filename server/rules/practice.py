@@ -1,0 +1,51 @@
+"""Practice: one player, ball in hand anywhere at all times, no fouls, never over."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from .outcome import ANYWHERE
+from .position import Position
+from .ruling import Ruling
+from .shotfacts import ShotFacts
+
+
+class PracticeRules:
+    """Practice as a `kinds.GameRules` strategy: every shot is legal and the player stays."""
+
+    kind = "practice"
+    seats = 1
+    rack = "eight_ball"
+    breaks = False
+    opening_ball_in_hand = ANYWHERE
+    rerack_at_will = True
+    spot_choice: tuple[int, ...] = ()
+
+    def legal_targets(self, pos: Position) -> list[int]:
+        """Empty: anything goes."""
+        return []
+
+    def balls_left(self, pos: Position) -> list[list[int]] | None:
+        return None
+
+    def requires_call(self, pos: Position) -> bool:
+        return False
+
+    def judge(self, pos: Position, facts: ShotFacts) -> Ruling:
+        """No fouls; a pocketed cue ball comes back as ball in hand."""
+        r = Ruling(continues=True, ball_in_hand=ANYWHERE)
+        if facts.scratch:
+            r.notes.append("The cue ball went in: place it anywhere.")
+        if not [b for b in pos.object_balls if b not in facts.pocketed]:
+            r.notes.append("Table cleared. Rerack to play again.")
+        return r
+
+    def timeout(self, pos: Position) -> Ruling:
+        """Nothing happens but the message: there is no one to pass the turn to."""
+        return Ruling(continues=True, ball_in_hand=ANYWHERE, notes=["Time ran out."])
+
+    def count_fouls(self, fouls_in_row: Sequence[int], seat: int, fouled: bool) -> list[int]:
+        return list(fouls_in_row)
+
+    def foul_warning(self, fouls_in_row: Sequence[int], seat: int, name: str) -> str | None:
+        return None
