@@ -107,6 +107,7 @@ def percentile(values: list[float], p: float) -> float:
 
 # ---- the server --------------------------------------------------------------------------
 
+
 def free_port() -> int:
     with socket.socket() as sock:
         sock.bind(("127.0.0.1", 0))
@@ -116,12 +117,29 @@ def free_port() -> int:
 def start_server(port: int, db: Path, log: Path, deflate: bool) -> subprocess.Popen:
     """`deflate`: the server accepts permessage-deflate (`POOL_WS_DEFLATE`), the clients
     offer it."""
-    env = {**os.environ, "POOL_DB_PATH": str(db), "POOL_MAX_ROOMS": "5000",
-           "POOL_WS_DEFLATE": "1" if deflate else "0"}
+    env = {
+        **os.environ,
+        "POOL_DB_PATH": str(db),
+        "POOL_MAX_ROOMS": "5000",
+        "POOL_WS_DEFLATE": "1" if deflate else "0",
+    }
     out = log.open("w")
-    return subprocess.Popen([sys.executable, "-m", "server", "--host", "127.0.0.1",
-                             "--port", str(port), "--log-level", "warning"],
-                            env=env, stdout=out, stderr=subprocess.STDOUT)
+    return subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "server",
+            "--host",
+            "127.0.0.1",
+            "--port",
+            str(port),
+            "--log-level",
+            "warning",
+        ],
+        env=env,
+        stdout=out,
+        stderr=subprocess.STDOUT,
+    )
 
 
 def cpu_seconds(pid: int) -> float:
@@ -159,11 +177,15 @@ async def wait_healthy(base: str, proc: subprocess.Popen) -> None:
 
 # ---- the bots ------------------------------------------------------------------------------
 
+
 async def make_room(http: httpx.AsyncClient) -> RoomBots:
-    room = (await http.post("/api/rooms", json={"game": "eight_ball", "race_to": 15,
-                                                "shot_clock": 0})).json()["room_id"]
-    tokens = [(await http.post(f"/api/rooms/{room}/join", json={"name": name})).json()["token"]
-              for name in ("Bot A", "Bot B")]
+    room = (
+        await http.post("/api/rooms", json={"game": "eight_ball", "race_to": 15, "shot_clock": 0})
+    ).json()["room_id"]
+    tokens = [
+        (await http.post(f"/api/rooms/{room}/join", json={"name": name})).json()["token"]
+        for name in ("Bot A", "Bot B")
+    ]
     return RoomBots(room, tokens)
 
 
@@ -176,26 +198,45 @@ def action(state: dict, seat: int, rng: random.Random) -> dict | None:
         return None
     decision = match.get("decision")
     if decision is not None:
-        return {"type": "decide", "option": decision["options"][0]} \
-            if decision["seat"] == seat else None
+        return (
+            {"type": "decide", "option": decision["options"][0]}
+            if decision["seat"] == seat
+            else None
+        )
     if match["turn"] != seat:
         return None
     cue_on = any(row[0] == 0 for row in state["balls"])
     if match.get("ball_in_hand") and not cue_on:
-        right = HEAD_STRING - 0.05 if match["ball_in_hand"] == "behind_head_string" \
-            else TABLE[0] - 0.1
-        return {"type": "place_cue", "x": rng.uniform(0.1, right),
-                "y": rng.uniform(0.1, TABLE[1] - 0.1)}
+        right = (
+            HEAD_STRING - 0.05 if match["ball_in_hand"] == "behind_head_string" else TABLE[0] - 0.1
+        )
+        return {
+            "type": "place_cue",
+            "x": rng.uniform(0.1, right),
+            "y": rng.uniform(0.1, TABLE[1] - 0.1),
+        }
     if match.get("requires_call") and match.get("called_pocket") is None:
         return {"type": "call", "pocket": rng.randrange(6)}
-    return {"type": "shoot", "angle": rng.uniform(-math.pi, math.pi),
-            "speed": rng.uniform(4.0, 9.0), "tip": [0.0, 0.0]}
+    return {
+        "type": "shoot",
+        "angle": rng.uniform(-math.pi, math.pi),
+        "speed": rng.uniform(4.0, 9.0),
+        "tip": [0.0, 0.0],
+    }
 
 
-async def client(base_ws: str, bots: RoomBots, seat: int | None, stats: Stats,
-                 stop: asyncio.Event, compression: str | None, think: float,
-                 connected: list[CountingConnection], ready: asyncio.Event,
-                 rng: random.Random) -> None:
+async def client(
+    base_ws: str,
+    bots: RoomBots,
+    seat: int | None,
+    stats: Stats,
+    stop: asyncio.Event,
+    compression: str | None,
+    think: float,
+    connected: list[CountingConnection],
+    ready: asyncio.Event,
+    rng: random.Random,
+) -> None:
     """One socket: a bot player (seat 0/1) or the spectator (None)."""
     url = f"{base_ws}/ws/rooms/{bots.room_id}"
     if seat is not None:
@@ -204,9 +245,14 @@ async def client(base_ws: str, bots: RoomBots, seat: int | None, stats: Stats,
     shot_first: dict[int, list] = {}  # spectator: shot -> [first time, bytes, frames]
     frame_every = [6]
     try:
-        async with websockets.connect(url, compression=compression, max_size=2**20,
-                                      create_connection=CountingConnection,
-                                      open_timeout=60, ping_interval=None) as ws:
+        async with websockets.connect(
+            url,
+            compression=compression,
+            max_size=2**20,
+            create_connection=CountingConnection,
+            open_timeout=60,
+            ping_interval=None,
+        ) as ws:
             connected.append(ws)
             await ready.wait()
             async for raw in ws:  # the task is cancelled when the run is over
@@ -249,7 +295,8 @@ async def client(base_ws: str, bots: RoomBots, seat: int | None, stats: Stats,
                         pending.cancel()
                     if todo is not None:
                         pending = asyncio.ensure_future(
-                            act(ws, todo, bots, think * rng.uniform(0.5, 1.5), stats))
+                            act(ws, todo, bots, think * rng.uniform(0.5, 1.5), stats)
+                        )
                 elif kind == "shot_result" and message["shot"] is not None:
                     finish_shot(bots, message["shot"], stats)
         if not stop.is_set():
@@ -279,13 +326,15 @@ def parse_frame(raw: str | bytes) -> tuple[int, int, bool, int] | None:
     if not isinstance(raw, str) or not raw.startswith(FRAME_PREFIX):
         return None
     _, _, shot, tick, _ = raw[:80].split(",", 4)
-    return (int(shot[7:]), int(tick[7:]), raw.endswith(',"last":true}'),
-            1 + raw.count('{"tick":'))
+    return (int(shot[7:]), int(tick[7:]), raw.endswith(',"last":true}'), 1 + raw.count('{"tick":'))
 
 
 def action_place(rng: random.Random) -> dict:
-    return {"type": "place_cue", "x": rng.uniform(0.1, HEAD_STRING - 0.05),
-            "y": rng.uniform(0.1, TABLE[1] - 0.1)}
+    return {
+        "type": "place_cue",
+        "x": rng.uniform(0.1, HEAD_STRING - 0.05),
+        "y": rng.uniform(0.1, TABLE[1] - 0.1),
+    }
 
 
 async def act(ws, todo: dict, bots: RoomBots, delay: float, stats: Stats) -> None:
@@ -308,8 +357,15 @@ def finish_shot(bots: RoomBots, shot: int, stats: Stats) -> None:
 
 # ---- one run ---------------------------------------------------------------------------------
 
-async def run(rooms: int, seconds: float, compression: str | None, think: float,
-              seed: int, server_log: Path | None = None) -> dict:
+
+async def run(
+    rooms: int,
+    seconds: float,
+    compression: str | None,
+    think: float,
+    seed: int,
+    server_log: Path | None = None,
+) -> dict:
     port = free_port()
     base = f"http://127.0.0.1:{port}"
     with tempfile.TemporaryDirectory() as tmp:
@@ -347,8 +403,15 @@ def no_cyclic_gc():
         gc.unfreeze()
 
 
-async def drive(proc: subprocess.Popen, base: str, rooms: int, seconds: float,
-                compression: str | None, think: float, seed: int) -> dict:
+async def drive(
+    proc: subprocess.Popen,
+    base: str,
+    rooms: int,
+    seconds: float,
+    compression: str | None,
+    think: float,
+    seed: int,
+) -> dict:
     await wait_healthy(base, proc)
     rng = random.Random(seed)
     async with httpx.AsyncClient(base_url=base, timeout=60) as http:
@@ -361,9 +424,22 @@ async def drive(proc: subprocess.Popen, base: str, rooms: int, seconds: float,
 
     async def spawn(bots: RoomBots, seat: int | None) -> None:
         async with gate:
-            tasks.append(asyncio.ensure_future(client(
-                base_ws, bots, seat, stats, stop, compression, think, connected, ready,
-                random.Random(rng.random()))))
+            tasks.append(
+                asyncio.ensure_future(
+                    client(
+                        base_ws,
+                        bots,
+                        seat,
+                        stats,
+                        stop,
+                        compression,
+                        think,
+                        connected,
+                        ready,
+                        random.Random(rng.random()),
+                    )
+                )
+            )
             while len(tasks) > len(connected) + sum(t.done() for t in tasks):
                 await asyncio.sleep(0.01)
 
@@ -391,7 +467,9 @@ async def drive(proc: subprocess.Popen, base: str, rooms: int, seconds: float,
     await asyncio.gather(*tasks, return_exceptions=True)
     clients = len(connected)
     return {
-        "rooms": rooms, "clients": clients, "seconds": elapsed,
+        "rooms": rooms,
+        "clients": clients,
+        "seconds": elapsed,
         "frames_per_s": stats.frames / elapsed,
         "frames_per_s_client": stats.frames / elapsed / max(1, clients),
         "late_p50_ms": 1000 * percentile(stats.lateness, 50),
@@ -408,62 +486,99 @@ async def drive(proc: subprocess.Popen, base: str, rooms: int, seconds: float,
         "client_cpu": 100 * (own1 - own0) / elapsed,
         "bytes_per_s_client": (bytes1 - bytes0) / elapsed / max(1, clients),
         "rolling_bytes_per_s": stats.rolling_bytes / stats.rolling_seconds
-        if stats.rolling_seconds else math.nan,
+        if stats.rolling_seconds
+        else math.nan,
         "skipped_pct": 100 * (1 - stats.spectator_frames / stats.planned_frames)
-        if stats.planned_frames else math.nan,
+        if stats.planned_frames
+        else math.nan,
         "errors": dict(stats.errors),
     }
 
 
-COLUMNS = [("rooms", "rooms", "{:.0f}"), ("clients", "clients", "{:.0f}"),
-           ("frames/s", "frames_per_s", "{:.0f}"), ("per client", "frames_per_s_client",
-                                                    "{:.1f}"),
-           ("late p50 ms", "late_p50_ms", "{:.1f}"), ("late p99 ms", "late_p99_ms", "{:.1f}"),
-           ("late max ms", "late_max_ms", "{:.0f}"), ("skipped %", "skipped_pct", "{:.1f}"),
-           ("start p50 ms", "start_p50_ms", "{:.1f}"),
-           ("sent p50 ms", "sent_p50_ms", "{:.1f}"), ("sent p99 ms", "sent_p99_ms", "{:.1f}"),
-           ("server start p50 ms", "server_start_p50_ms", "{:.1f}"),
-           ("server start p99 ms", "server_start_p99_ms", "{:.1f}"),
-           ("shots", "shots", "{:.0f}"), ("server CPU %", "server_cpu", "{:.0f}"),
-           ("client CPU %", "client_cpu", "{:.0f}"),
-           ("steal %", "steal_pct", "{:.0f}"),
-           ("B/s/client", "bytes_per_s_client", "{:.0f}"),
-           ("B/s rolling", "rolling_bytes_per_s", "{:.0f}")]
+COLUMNS = [
+    ("rooms", "rooms", "{:.0f}"),
+    ("clients", "clients", "{:.0f}"),
+    ("frames/s", "frames_per_s", "{:.0f}"),
+    ("per client", "frames_per_s_client", "{:.1f}"),
+    ("late p50 ms", "late_p50_ms", "{:.1f}"),
+    ("late p99 ms", "late_p99_ms", "{:.1f}"),
+    ("late max ms", "late_max_ms", "{:.0f}"),
+    ("skipped %", "skipped_pct", "{:.1f}"),
+    ("start p50 ms", "start_p50_ms", "{:.1f}"),
+    ("sent p50 ms", "sent_p50_ms", "{:.1f}"),
+    ("sent p99 ms", "sent_p99_ms", "{:.1f}"),
+    ("server start p50 ms", "server_start_p50_ms", "{:.1f}"),
+    ("server start p99 ms", "server_start_p99_ms", "{:.1f}"),
+    ("shots", "shots", "{:.0f}"),
+    ("server CPU %", "server_cpu", "{:.0f}"),
+    ("client CPU %", "client_cpu", "{:.0f}"),
+    ("steal %", "steal_pct", "{:.0f}"),
+    ("B/s/client", "bytes_per_s_client", "{:.0f}"),
+    ("B/s rolling", "rolling_bytes_per_s", "{:.0f}"),
+]
 
 
 def main(argv: list[str] | None = None) -> None:
-    parser = argparse.ArgumentParser(prog="python -m bench.load",
-                                     description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(
+        prog="python -m bench.load", description=__doc__.splitlines()[0]
+    )
     parser.add_argument("--rooms", type=int, default=10)
     parser.add_argument("--seconds", type=float, default=20.0)
     parser.add_argument("--runs", type=int, default=1, help="report the median of R runs")
-    parser.add_argument("--compression", choices=("deflate", "none"), default="none",
-                        help="deflate: the server accepts permessage-deflate and the clients "
-                             "offer it, as browsers do (default: the server's default, off)")
-    parser.add_argument("--server-log", type=Path, default=None,
-                        help="append the server's log (warnings: slow shots...) to this file")
-    parser.add_argument("--think", type=float, default=0.3,
-                        help="seconds a bot waits before acting (mean)")
-    parser.add_argument("--loop", choices=("uvloop", "asyncio"), default="uvloop",
-                        help="the clients' event loop (uvloop, as uvicorn[standard] "
-                             "installs: cheaper, leaves more of the machine to the server)")
+    parser.add_argument(
+        "--compression",
+        choices=("deflate", "none"),
+        default="none",
+        help="deflate: the server accepts permessage-deflate and the clients "
+        "offer it, as browsers do (default: the server's default, off)",
+    )
+    parser.add_argument(
+        "--server-log",
+        type=Path,
+        default=None,
+        help="append the server's log (warnings: slow shots...) to this file",
+    )
+    parser.add_argument(
+        "--think", type=float, default=0.3, help="seconds a bot waits before acting (mean)"
+    )
+    parser.add_argument(
+        "--loop",
+        choices=("uvloop", "asyncio"),
+        default="uvloop",
+        help="the clients' event loop (uvloop, as uvicorn[standard] "
+        "installs: cheaper, leaves more of the machine to the server)",
+    )
     args = parser.parse_args(argv)
     if not 1 <= args.rooms <= 1000 or not 1 <= args.seconds <= 600:
         parser.error("rooms 1..1000, seconds 1..600")
     compression = None if args.compression == "none" else "deflate"
     if args.loop == "uvloop":
         import uvloop
+
         asyncio.set_event_loop_policy(uvloop.EventLoopPolicy())
     results = []
     for i in range(args.runs):
-        result = asyncio.run(run(args.rooms, args.seconds, compression, args.think, seed=i,
-                                 server_log=args.server_log))
+        result = asyncio.run(
+            run(
+                args.rooms,
+                args.seconds,
+                compression,
+                args.think,
+                seed=i,
+                server_log=args.server_log,
+            )
+        )
         results.append(result)
-        print(f"run {i + 1}: " + ", ".join(f"{name} {fmt.format(result[key])}"
-                                           for name, key, fmt in COLUMNS),
-              f"errors {result['errors']}", flush=True)
-    print(f"\nmedian of {len(results)} run(s), {args.seconds:g} s each, "
-          f"compression {args.compression}:")
+        print(
+            f"run {i + 1}: "
+            + ", ".join(f"{name} {fmt.format(result[key])}" for name, key, fmt in COLUMNS),
+            f"errors {result['errors']}",
+            flush=True,
+        )
+    print(
+        f"\nmedian of {len(results)} run(s), {args.seconds:g} s each, "
+        f"compression {args.compression}:"
+    )
     for name, key, fmt in COLUMNS:
         print(f"  {name:>13}: {fmt.format(statistics.median(r[key] for r in results))}")
     errors: Counter = Counter()

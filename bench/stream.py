@@ -46,10 +46,10 @@ async def one_break(address: str, compression: str | None) -> tuple[float, int, 
         token = (await http.post(f"/api/rooms/{room}/join", json={"name": "A"})).json()["token"]
         await http.post(f"/api/rooms/{room}/join", json={"name": "B"})
     url = f"ws://{address}/ws/rooms/{room}"
-    async with websockets.connect(f"{url}?token={token}", compression=compression,
-                                  max_queue=None) as a, \
-            websockets.connect(url, compression=compression,
-                               create_connection=CountingConnection) as s:
+    async with (
+        websockets.connect(f"{url}?token={token}", compression=compression, max_queue=None) as a,
+        websockets.connect(url, compression=compression, create_connection=CountingConnection) as s,
+    ):
         for _ in range(3):
             await s.recv()
         await a.send(json.dumps({"type": "shoot", "angle": 0.0, "speed": 9.0}))
@@ -71,12 +71,15 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=3)
     args = parser.parse_args()
-    print(f"{'frames/s':>8} {'per msg':>7} {'compression':>12} {'bytes/s per client':>19} "
-          f"{'frames':>7}")
+    print(
+        f"{'frames/s':>8} {'per msg':>7} {'compression':>12} {'bytes/s per client':>19} "
+        f"{'frames':>7}"
+    )
     for every, per_message in ((2, 1), (4, 1), (6, 1), (6, 2), (6, 4)):
         # pace 2: fast enough, and never so fast that the room skips stale frames
-        settings = Settings().replace(frame_every=every, frames_per_message=per_message,
-                           pace=2.0, ws_deflate=True)
+        settings = Settings().replace(
+            frame_every=every, frames_per_message=per_message, pace=2.0, ws_deflate=True
+        )
         scratch = Path(tempfile.mkdtemp(prefix="bench-stream-")) / "billiards.db"
         app = create_app(settings, store=Database(scratch))  # not the game's database
         with serving(app, settings, bound_socket()) as address:
@@ -84,8 +87,10 @@ def main() -> None:
                 runs = [asyncio.run(one_break(address, compression)) for _ in range(args.runs)]
                 rate = statistics.median(r[0] for r in runs)
                 frames = statistics.median(r[1] for r in runs)
-                print(f"{120 // every:>8} {per_message:>7} {compression or 'none':>12} "
-                      f"{rate:>19.0f} {frames:>7.0f}")
+                print(
+                    f"{120 // every:>8} {per_message:>7} {compression or 'none':>12} "
+                    f"{rate:>19.0f} {frames:>7.0f}"
+                )
 
 
 if __name__ == "__main__":

@@ -14,19 +14,27 @@ from server.config import Settings, SettingsError
 from server.rooms.prepare import warm_up
 
 
-def uvicorn_config(app: Any, host: str, port: int, settings: Settings,
-                   **extra: Any) -> uvicorn.Config:
+def uvicorn_config(
+    app: Any, host: str, port: int, settings: Settings, **extra: Any
+) -> uvicorn.Config:
     """WebSocket limits set explicitly (uvicorn's defaults are 16 MiB and 20 s/20 s).
 
     permessage-deflate (`POOL_WS_DEFLATE=1`, off by default): a break costs a client
     ~1.5 KB/s with it, ~7.0 KB/s without (`python -m bench.stream`), for ~45 % more server
     CPU at 200 rooms (docs/performance.md).
     """
-    return uvicorn.Config(app, host=host, port=port, ws_max_size=settings.max_message,
-                          ws_ping_interval=settings.ws_ping_interval,
-                          ws_ping_timeout=settings.ws_ping_timeout,
-                          ws_per_message_deflate=settings.ws_deflate,
-                          workers=1, proxy_headers=False, **extra)
+    return uvicorn.Config(
+        app,
+        host=host,
+        port=port,
+        ws_max_size=settings.max_message,
+        ws_ping_interval=settings.ws_ping_interval,
+        ws_ping_timeout=settings.ws_ping_timeout,
+        ws_per_message_deflate=settings.ws_deflate,
+        workers=1,
+        proxy_headers=False,
+        **extra,
+    )
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -40,8 +48,9 @@ def main(argv: list[str] | None = None) -> None:
         settings = Settings.from_env()
     except SettingsError as exc:
         parser.error(str(exc))
-    config = uvicorn_config(create_app(settings), args.host, args.port, settings,
-                            log_level=args.log_level)
+    config = uvicorn_config(
+        create_app(settings), args.host, args.port, settings, log_level=args.log_level
+    )
     warm_up(settings.frame_every)
     # Everything loaded so far (numba, numpy, pydantic, the app) lives as long as the
     # process: keep it out of the cyclic collector, whose full passes over it stalled every

@@ -23,11 +23,13 @@ from server.store import Database
 CLOSE_RESTART = 1012
 
 
-def create_app(settings: Settings | None = None,
-               observer: RoomObserver | None = None,
-               store: Database | None = None,
-               clock: Clock = SYSTEM_CLOCK,
-               seeds: SeedSource | None = None) -> FastAPI:
+def create_app(
+    settings: Settings | None = None,
+    observer: RoomObserver | None = None,
+    store: Database | None = None,
+    clock: Clock = SYSTEM_CLOCK,
+    seeds: SeedSource | None = None,
+) -> FastAPI:
     """Build the app. `settings` defaults to `Settings.from_env()`. `store` is the SQLite
     history and room store (default: the file at `settings.db_path`); its `StoreObserver`
     is told about every shot and room change unless `observer` is given. `clock` and
@@ -46,8 +48,10 @@ def create_app(settings: Settings | None = None,
         if isinstance(observer, StoreObserver):
             observer.start()
             registry.restore(await store.call(lambda repo: repo.rooms()))
-        background = [asyncio.create_task(registry.run_sweeper()),
-                      asyncio.create_task(registry.run_watchdog())]
+        background = [
+            asyncio.create_task(registry.run_sweeper()),
+            asyncio.create_task(registry.run_watchdog()),
+        ]
         try:
             yield
         finally:
@@ -62,10 +66,13 @@ def create_app(settings: Settings | None = None,
             await asyncio.to_thread(store.close)  # every queued write is on disk
             registry.runner.close()
 
-    app = FastAPI(title="Pool online", version="1.0",
-                  description="Rooms, seats and the authoritative game stream. "
-                              "The WebSocket protocol is in docs/protocol.md.",
-                  lifespan=lifespan)
+    app = FastAPI(
+        title="Pool online",
+        version="1.0",
+        description="Rooms, seats and the authoritative game stream. "
+        "The WebSocket protocol is in docs/protocol.md.",
+        lifespan=lifespan,
+    )
     app.state.settings = settings
     app.state.registry = registry
     app.state.store = store

@@ -29,8 +29,7 @@ from pydantic_settings.sources.utils import parse_env_vars
 KIB = 1024
 REPO_ROOT = Path(__file__).resolve().parent.parent
 ENV_PREFIX = "POOL_"
-_environment: ContextVar[Mapping[str, str] | None] = ContextVar("pool_environment",
-                                                                default=None)
+_environment: ContextVar[Mapping[str, str] | None] = ContextVar("pool_environment", default=None)
 
 
 class SettingsError(ValueError):
@@ -45,8 +44,9 @@ class _MappingEnvSource(EnvSettingsSource):
         super().__init__(settings_cls)
 
     def _load_env_vars(self) -> Mapping[str, str | None]:
-        return parse_env_vars(self._mapping, self.case_sensitive, self.env_ignore_empty,
-                              self.env_parse_none_str)
+        return parse_env_vars(
+            self._mapping, self.case_sensitive, self.env_ignore_empty, self.env_parse_none_str
+        )
 
 
 Seconds = Annotated[float, Field(ge=0.0, le=86_400.0)]
@@ -56,8 +56,9 @@ PositiveSeconds = Annotated[float, Field(gt=0.0, le=86_400.0)]
 class Settings(BaseSettings):
     """Clocks in seconds, sizes in bytes or messages."""
 
-    model_config = SettingsConfigDict(env_prefix=ENV_PREFIX, frozen=True, extra="forbid",
-                                      populate_by_name=True)
+    model_config = SettingsConfigDict(
+        env_prefix=ENV_PREFIX, frozen=True, extra="forbid", populate_by_name=True
+    )
 
     shot_clock: Annotated[float, Field(ge=0.0, le=600.0)] = 60.0  # a room may set its own
     min_shot_clock: Annotated[float, Field(gt=0.0, le=600.0)] = 5.0  # smallest non-zero clock
@@ -91,8 +92,10 @@ class Settings(BaseSettings):
     ws_deflate: bool = False
 
     web_dir: Path = REPO_ROOT / "web"
-    db_path: Path = Field(default=Path("billiards.db"),
-                          validation_alias=AliasChoices("db_path", "POOL_DB_PATH", "BILLIARDS_DB"))
+    db_path: Path = Field(
+        default=Path("billiards.db"),
+        validation_alias=AliasChoices("db_path", "POOL_DB_PATH", "BILLIARDS_DB"),
+    )
 
     @field_validator("allowed_origins", mode="before")
     @classmethod
@@ -102,12 +105,14 @@ class Settings(BaseSettings):
         return value
 
     @classmethod
-    def settings_customise_sources(cls, settings_cls: type[BaseSettings],
-                                   init_settings: PydanticBaseSettingsSource,
-                                   env_settings: PydanticBaseSettingsSource,
-                                   dotenv_settings: PydanticBaseSettingsSource,
-                                   file_secret_settings: PydanticBaseSettingsSource,
-                                   ) -> tuple[PydanticBaseSettingsSource, ...]:
+    def settings_customise_sources(
+        cls,
+        settings_cls: type[BaseSettings],
+        init_settings: PydanticBaseSettingsSource,
+        env_settings: PydanticBaseSettingsSource,
+        dotenv_settings: PydanticBaseSettingsSource,
+        file_secret_settings: PydanticBaseSettingsSource,
+    ) -> tuple[PydanticBaseSettingsSource, ...]:
         """Only `from_env` reads the environment: `Settings(...)` in a test is exactly what
         it says, whatever the shell it runs in has set."""
         env = _environment.get()

@@ -17,8 +17,9 @@ from server.config import Settings
 
 
 @contextmanager
-def serving(app: Any, settings: Settings, sock: socket.socket,
-            timeout: float = 30.0) -> Iterator[str]:
+def serving(
+    app: Any, settings: Settings, sock: socket.socket, timeout: float = 30.0
+) -> Iterator[str]:
     """Serve `app` on the bound socket `sock` (closed afterwards); yields "host:port".
     Stopping runs the app's shutdown (sockets closed with 1012, the store flushed)."""
     host, port = sock.getsockname()[:2]

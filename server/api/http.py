@@ -24,8 +24,11 @@ from .schemas import (
 )
 
 router = APIRouter()
-_ERRORS: dict[int | str, dict[str, Any]] = {404: {"model": ErrorResponse}, 409: {"model": ErrorResponse},
-           422: {"description": "Validation error"}}
+_ERRORS: dict[int | str, dict[str, Any]] = {
+    404: {"model": ErrorResponse},
+    409: {"model": ErrorResponse},
+    422: {"description": "Validation error"},
+}
 
 
 @router.get("/health", response_model=Health, tags=["meta"])
@@ -40,33 +43,48 @@ async def limits() -> Limits:
 
 
 @router.get("/api/stats", response_model=ServerStats, tags=["meta"])
-async def server_stats(registry: Registry,
-                       window: Annotated[float, Query(gt=0, le=600, allow_inf_nan=False)] = 60.0
-                       ) -> dict[str, Any]:
+async def server_stats(
+    registry: Registry, window: Annotated[float, Query(gt=0, le=600, allow_inf_nan=False)] = 60.0
+) -> dict[str, Any]:
     """Load and stream health: rooms, connections, messages waiting in outboxes, and how
     late frames left the server (percentiles over the last `window` seconds)."""
     return registry.stats(window)
 
 
-@router.post("/api/rooms", status_code=status.HTTP_201_CREATED, response_model=RoomCreated,
-             responses={422: {"description": "Validation error"},
-                        503: {"model": ErrorResponse}}, tags=["rooms"])
-async def create_room(body: CreateRoom, registry: Registry,
-                      settings: SettingsDep) -> dict[str, Any]:
+@router.post(
+    "/api/rooms",
+    status_code=status.HTTP_201_CREATED,
+    response_model=RoomCreated,
+    responses={422: {"description": "Validation error"}, 503: {"model": ErrorResponse}},
+    tags=["rooms"],
+)
+async def create_room(
+    body: CreateRoom, registry: Registry, settings: SettingsDep
+) -> dict[str, Any]:
     """Open a table. `practice` has one seat and no clock; join it next to sit down."""
     clock = body.shot_clock
     if clock is not None and 0 < clock < settings.min_shot_clock:
-        raise HTTPException(422, {"code": "bad_shot_clock", "message":
-                                  f"The shot clock is 0 (off) or at least "
-                                  f"{settings.min_shot_clock:g} seconds."})
+        raise HTTPException(
+            422,
+            {
+                "code": "bad_shot_clock",
+                "message": f"The shot clock is 0 (off) or at least "
+                f"{settings.min_shot_clock:g} seconds.",
+            },
+        )
     try:
         live = registry.create(body.game, body.race_to, clock)
     except ActionError as exc:
         raise HTTPException(503, {"code": exc.code, "message": exc.message}) from None
     room = live.room
-    return {"room_id": room.room_id, "game": room.game, "race_to": room.race_to,
-            "shot_clock": room.shot_clock, "seats": len(room.seats),
-            "url": f"/r/{room.room_id}"}
+    return {
+        "room_id": room.room_id,
+        "game": room.game,
+        "race_to": room.race_to,
+        "shot_clock": room.shot_clock,
+        "seats": len(room.seats),
+        "url": f"/r/{room.room_id}",
+    }
 
 
 @router.get("/api/rooms", response_model=RoomList, tags=["rooms"])
@@ -74,16 +92,14 @@ async def list_rooms(registry: Registry) -> dict[str, Any]:
     return {"rooms": [live.room.summary() for live in registry.listing()]}
 
 
-@router.get("/api/rooms/{room_id}", response_model=RoomDetail, responses=_ERRORS,
-            tags=["rooms"])
+@router.get("/api/rooms/{room_id}", response_model=RoomDetail, responses=_ERRORS, tags=["rooms"])
 async def show_room(live: RoomDep) -> dict[str, Any]:
     """The room and its full public state (the WebSocket `state` body)."""
     state = live.state_message().model_dump(mode="json", exclude={"type", "seq"})
     return {**live.room.summary(), "state": state}
 
 
-@router.post("/api/rooms/{room_id}/join", response_model=Joined, responses=_ERRORS,
-             tags=["rooms"])
+@router.post("/api/rooms/{room_id}/join", response_model=Joined, responses=_ERRORS, tags=["rooms"])
 async def join_room(room_id: str, body: JoinRoom, live: RoomDep) -> dict[str, Any]:
     """Take the first free seat. The token is shown once; keep it to connect and reconnect."""
     try:
@@ -92,8 +108,7 @@ async def join_room(room_id: str, body: JoinRoom, live: RoomDep) -> dict[str, An
         code = 409 if exc.code == "room_full" else 422
         raise HTTPException(code, {"code": exc.code, "message": exc.message}) from None
     live.on_joined(seat)
-    return {"room_id": room_id, "seat": seat, "token": token,
-            "name": live.room.name_of(seat)}
+    return {"room_id": room_id, "seat": seat, "token": token, "name": live.room.name_of(seat)}
 
 
 __all__ = ["RoomSummary", "router"]

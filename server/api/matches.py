@@ -21,7 +21,10 @@ from .deps import SettingsDep, Store
 from .schemas import ErrorResponse
 
 router = APIRouter()
-_NOT_FOUND: dict[int | str, dict[str, Any]] = {404: {"model": ErrorResponse}, 422: {"description": "Validation error"}}
+_NOT_FOUND: dict[int | str, dict[str, Any]] = {
+    404: {"model": ErrorResponse},
+    422: {"description": "Validation error"},
+}
 
 
 class MatchBase(BaseModel):
@@ -84,19 +87,22 @@ def _missing(what: str) -> HTTPException:
 
 
 @router.get("/api/matches", response_model=MatchList, tags=["history"])
-async def recent_matches(store: Store,
-                         limit: Annotated[int, Query(ge=1, le=100)] = 20,
-                         status: Literal["playing", "finished", "abandoned"] | None = None
-                         ) -> dict[str, Any]:
+async def recent_matches(
+    store: Store,
+    limit: Annotated[int, Query(ge=1, le=100)] = 20,
+    status: Literal["playing", "finished", "abandoned"] | None = None,
+) -> dict[str, Any]:
     """Matches newest first (finished, still being played, or abandoned)."""
     records = await store.call(lambda repo: repo.recent_matches(limit, status))
     return {"matches": [_match_row(r) for r in records]}
 
 
-@router.get("/api/matches/{match_id}", response_model=MatchDetail, responses=_NOT_FOUND,
-            tags=["history"])
+@router.get(
+    "/api/matches/{match_id}", response_model=MatchDetail, responses=_NOT_FOUND, tags=["history"]
+)
 async def show_match(match_id: int, store: Store, settings: SettingsDep) -> dict[str, Any]:
     """One match: its games (frames) and every shot, with the table before it (exact)."""
+
     def load(repo: Repository) -> Any:
         match = repo.match(match_id)
         return None if match is None else (match, repo.games(match_id), repo.shots(match_id))
@@ -108,9 +114,17 @@ async def show_match(match_id: int, store: Store, settings: SettingsDep) -> dict
     rows = [_shot_row(s) for s in shots]
     geometry = from_data(Table, shots[0].table).to_dict() if shots else None
     games_rows = [{k: v for k, v in asdict(g).items() if k != "match_id"} for g in games]
-    return {**_match_row(match), "games": games_rows, "shots": rows, "geometry": geometry,
-            "stream": StreamRates(tick_hz=TICK_HZ, frame_every=settings.frame_every,
-                                  frames_per_message=settings.frames_per_message)}
+    return {
+        **_match_row(match),
+        "games": games_rows,
+        "shots": rows,
+        "geometry": geometry,
+        "stream": StreamRates(
+            tick_hz=TICK_HZ,
+            frame_every=settings.frame_every,
+            frames_per_message=settings.frames_per_message,
+        ),
+    }
 
 
 def _match_row(match: MatchRecord) -> dict[str, Any]:
@@ -121,11 +135,20 @@ def _match_row(match: MatchRecord) -> dict[str, Any]:
 
 
 def _shot_row(shot: ShotRecord) -> dict[str, Any]:
-    return {"n": shot.n, "shot_id": shot.room_shot, "game": shot.game, "seat": shot.seat,
-            "shot": shot.shot, "table": shot.table, "balls": shot.balls,
-            "outcome": shot.outcome, "played_at": shot.played_at, "engine": shot.engine,
-            "replay": f"/api/matches/{shot.match_id}/shots/{shot.n}/replay",
-            "b": _resting_rows(shot.balls)}
+    return {
+        "n": shot.n,
+        "shot_id": shot.room_shot,
+        "game": shot.game,
+        "seat": shot.seat,
+        "shot": shot.shot,
+        "table": shot.table,
+        "balls": shot.balls,
+        "outcome": shot.outcome,
+        "played_at": shot.played_at,
+        "engine": shot.engine,
+        "replay": f"/api/matches/{shot.match_id}/shots/{shot.n}/replay",
+        "b": _resting_rows(shot.balls),
+    }
 
 
 def _resting_rows(balls: dict) -> list[BallRow]:
@@ -134,17 +157,30 @@ def _resting_rows(balls: dict) -> list[BallRow]:
     return frame_rows(state.ids, state.positions, state.cels(), state.on_table)
 
 
-@router.get("/api/matches/{match_id}/shots/{n}/replay", responses={
-    **_NOT_FOUND, 200: {"content": {"application/x-ndjson": {}},
-                        "description": "one JSON message a line, as on the room socket"}},
-            response_class=StreamingResponse, tags=["history"])
-async def replay_shot(match_id: int, n: int, store: Store, settings: SettingsDep,
-                      pace: Annotated[float, Query(gt=0, le=100, allow_inf_nan=False)] = 1.0
-                      ) -> StreamingResponse:
+@router.get(
+    "/api/matches/{match_id}/shots/{n}/replay",
+    responses={
+        **_NOT_FOUND,
+        200: {
+            "content": {"application/x-ndjson": {}},
+            "description": "one JSON message a line, as on the room socket",
+        },
+    },
+    response_class=StreamingResponse,
+    tags=["history"],
+)
+async def replay_shot(
+    match_id: int,
+    n: int,
+    store: Store,
+    settings: SettingsDep,
+    pace: Annotated[float, Query(gt=0, le=100, allow_inf_nan=False)] = 1.0,
+) -> StreamingResponse:
     """Stream stored shot `n`'s `frame` and `event` messages exactly as the room sent them
     live (same format, same timing; `pace` 2 plays twice as fast), then its `shot_result`.
     Newline-delimited JSON. 409 `engine_changed`: an old shot whose motion was not kept,
     played by an engine other than this server's."""
+
     def load(repo: Repository) -> tuple[MatchRecord | None, ShotRecord | None]:
         return repo.match(match_id), repo.shot(match_id, n)
 
@@ -154,9 +190,11 @@ async def replay_shot(match_id: int, n: int, store: Store, settings: SettingsDep
     if shot is None:
         raise _missing("shot")
     try:
-        messages = await asyncio.to_thread(replay_motion, shot, settings.frame_every,
-                                           settings.frames_per_message)
+        messages = await asyncio.to_thread(
+            replay_motion, shot, settings.frame_every, settings.frames_per_message
+        )
     except EngineChanged as exc:
         raise HTTPException(409, {"code": "engine_changed", "message": str(exc)}) from None
-    return StreamingResponse(stream_replay(messages, shot, match, pace),
-                             media_type="application/x-ndjson")
+    return StreamingResponse(
+        stream_replay(messages, shot, match, pace), media_type="application/x-ndjson"
+    )

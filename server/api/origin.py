@@ -12,5 +12,8 @@ def origin_allowed(origin: str | None, host: str | None, allowed: tuple[str, ...
     if "*" in allowed or origin.rstrip("/") in {a.rstrip("/") for a in allowed}:
         return True
     parts = urlsplit(origin)
-    return (parts.scheme in ("http", "https") and host is not None
-            and parts.netloc.lower() == host.strip().lower())
+    return (
+        parts.scheme in ("http", "https")
+        and host is not None
+        and parts.netloc.lower() == host.strip().lower()
+    )

@@ -18,8 +18,9 @@ class Strict(BaseModel):
 class CreateRoom(Strict):
     game: GameKind
     race_to: Annotated[int, Field(ge=1, le=15)] = 1
-    shot_clock: Annotated[float, Field(ge=0, le=600,
-                                       description="seconds per shot; 0 = no clock")] | None = None
+    shot_clock: (
+        Annotated[float, Field(ge=0, le=600, description="seconds per shot; 0 = no clock")] | None
+    ) = None
 
 
 class RoomCreated(BaseModel):
@@ -53,8 +54,9 @@ class RoomDetail(RoomSummary):
 
 
 class JoinRoom(Strict):
-    name: Annotated[str, Field(min_length=1, max_length=MAX_NAME,
-                               description="1-24 printable characters")]
+    name: Annotated[
+        str, Field(min_length=1, max_length=MAX_NAME, description="1-24 printable characters")
+    ]
 
 
 class Joined(BaseModel):

@@ -32,10 +32,16 @@ CLOSE_TOO_BIG = 1009
 
 
 @router.websocket("/ws/rooms/{room_id}")
-async def room_socket(websocket: WebSocket, room_id: str, settings: SettingsDep,
-                      registry: Registry, token: str | None = None) -> None:
-    if not origin_allowed(websocket.headers.get("origin"), websocket.headers.get("host"),
-                          settings.allowed_origins):
+async def room_socket(
+    websocket: WebSocket,
+    room_id: str,
+    settings: SettingsDep,
+    registry: Registry,
+    token: str | None = None,
+) -> None:
+    if not origin_allowed(
+        websocket.headers.get("origin"), websocket.headers.get("host"), settings.allowed_origins
+    ):
         await websocket.close(CLOSE_POLICY, "origin_not_allowed")
         return
     live = registry.get(room_id)
@@ -49,8 +55,13 @@ async def room_socket(websocket: WebSocket, room_id: str, settings: SettingsDep,
             await websocket.close(CLOSE_POLICY, "bad_token")
             return
     await websocket.accept()
-    conn = Connection(websocket.send_text, seat, live.room.name_of(seat) if seat is not None
-                      else None, limit=settings.send_queue, send_timeout=settings.send_timeout)
+    conn = Connection(
+        websocket.send_text,
+        seat,
+        live.room.name_of(seat) if seat is not None else None,
+        limit=settings.send_queue,
+        send_timeout=settings.send_timeout,
+    )
     live.attach(conn)
     sender = asyncio.create_task(conn.run_sender())
     reader = asyncio.create_task(_read(websocket, live, conn, settings))
@@ -62,12 +73,12 @@ async def room_socket(websocket: WebSocket, room_id: str, settings: SettingsDep,
         live.detach(conn)
         if conn.close_code is not None and websocket.client_state == WebSocketState.CONNECTED:
             with contextlib.suppress(Exception):
-                await asyncio.wait_for(websocket.close(conn.close_code, conn.close_reason),
-                                       settings.send_timeout)
+                await asyncio.wait_for(
+                    websocket.close(conn.close_code, conn.close_reason), settings.send_timeout
+                )
 
 
-async def _read(websocket: WebSocket, live: LiveRoom, conn: Connection,
-                settings: Settings) -> None:
+async def _read(websocket: WebSocket, live: LiveRoom, conn: Connection, settings: Settings) -> None:
     """Read raw frames until the peer leaves or breaks a limit (then `conn.close_code`)."""
     bucket = TokenBucket(settings.rate_burst, settings.rate_per_second)
     while True:
@@ -78,8 +89,11 @@ async def _read(websocket: WebSocket, live: LiveRoom, conn: Connection,
         if raw is None:
             size = len(message.get("bytes") or b"")
         else:
-            size = len(raw.encode("utf-8", "surrogatepass")) if len(raw) * 4 > \
-                settings.max_message else len(raw)
+            size = (
+                len(raw.encode("utf-8", "surrogatepass"))
+                if len(raw) * 4 > settings.max_message
+                else len(raw)
+            )
         if size > settings.max_message:
             conn.close(CLOSE_TOO_BIG, "message_too_big")
             return
@@ -87,8 +101,9 @@ async def _read(websocket: WebSocket, live: LiveRoom, conn: Connection,
             conn.close(CLOSE_POLICY, "rate_limited")
             return
         if raw is None:
-            conn.push(text(ErrorMessage(code="binary_not_supported",
-                                        message="Send JSON text frames.")))
+            conn.push(
+                text(ErrorMessage(code="binary_not_supported", message="Send JSON text frames."))
+            )
             continue
         try:
             msg = parse_client_message(raw)

@@ -9,7 +9,18 @@ from .limits import LIMITS, PROTOCOL_VERSION, Limits, StreamRates
 from .plan import BallRow, ShotPlan, StreamFrames, Timed, frame_rows, message_text, plan_shot
 
 __all__ = [
-    "LIMITS", "PROTOCOL_VERSION", "AnyClientMessage", "BadMessage", "BallRow", "Limits",
-    "ShotPlan", "StreamFrames", "StreamRates", "Timed", "frame_rows", "message_text",
-    "parse_client_message", "plan_shot",
+    "LIMITS",
+    "PROTOCOL_VERSION",
+    "AnyClientMessage",
+    "BadMessage",
+    "BallRow",
+    "Limits",
+    "ShotPlan",
+    "StreamFrames",
+    "StreamRates",
+    "Timed",
+    "frame_rows",
+    "message_text",
+    "parse_client_message",
+    "plan_shot",
 ]

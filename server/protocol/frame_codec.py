@@ -49,10 +49,20 @@ def _put_int(buf: np.ndarray, pos: int, value: int) -> int:
 
 
 @njit(cache=True, nogil=True)
-def _encode(shot_id: int, ticks: np.ndarray, ids: np.ndarray, mm: np.ndarray,
-            cels: np.ndarray, on_table: np.ndarray, last: int, shot_text: np.ndarray,
-            tick_text: np.ndarray, balls_text: np.ndarray, last_text: np.ndarray,
-            end_text: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _encode(
+    shot_id: int,
+    ticks: np.ndarray,
+    ids: np.ndarray,
+    mm: np.ndarray,
+    cels: np.ndarray,
+    on_table: np.ndarray,
+    last: int,
+    shot_text: np.ndarray,
+    tick_text: np.ndarray,
+    balls_text: np.ndarray,
+    last_text: np.ndarray,
+    end_text: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
     count, n = on_table.shape
     per_frame = 64 + n * (4 * _MAX_INT_CHARS + 8)
     buf = np.empty(count * per_frame, dtype=np.uint8)
@@ -88,14 +98,30 @@ def _encode(shot_id: int, ticks: np.ndarray, ids: np.ndarray, mm: np.ndarray,
     return buf[:pos], offsets
 
 
-def encode_frames(shot_id: int, ticks: np.ndarray, ids: np.ndarray, mm: np.ndarray,
-                  cels: np.ndarray, on_table: np.ndarray, last: int) -> list[str]:
+def encode_frames(
+    shot_id: int,
+    ticks: np.ndarray,
+    ids: np.ndarray,
+    mm: np.ndarray,
+    cels: np.ndarray,
+    on_table: np.ndarray,
+    last: int,
+) -> list[str]:
     """One JSON object (without `type` and `seq`) per frame; frame `last` says so."""
     buf, offsets = _encode(
-        int(shot_id), np.ascontiguousarray(ticks, dtype=np.int64),
-        np.ascontiguousarray(ids, dtype=np.int64), np.ascontiguousarray(mm, dtype=np.int64),
-        np.ascontiguousarray(cels, dtype=np.int64), np.ascontiguousarray(on_table, dtype=np.bool_),
-        int(last), _SHOT, _TICK, _BALLS, _LAST, _END)
+        int(shot_id),
+        np.ascontiguousarray(ticks, dtype=np.int64),
+        np.ascontiguousarray(ids, dtype=np.int64),
+        np.ascontiguousarray(mm, dtype=np.int64),
+        np.ascontiguousarray(cels, dtype=np.int64),
+        np.ascontiguousarray(on_table, dtype=np.bool_),
+        int(last),
+        _SHOT,
+        _TICK,
+        _BALLS,
+        _LAST,
+        _END,
+    )
     text = buf.tobytes().decode("ascii")
     bounds = offsets.tolist()
-    return [text[bounds[j]:bounds[j + 1]] for j in range(len(bounds) - 1)]
+    return [text[bounds[j] : bounds[j + 1]] for j in range(len(bounds) - 1)]

@@ -21,8 +21,7 @@ Angle = Annotated[float, Field(ge=-MAX_ANGLE, le=MAX_ANGLE)]
 
 
 class ClientMessage(BaseModel):
-    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, strict=False,
-                              frozen=True)
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, strict=False, frozen=True)
 
 
 def _check_tip(tip: tuple[float, float]) -> None:
@@ -117,13 +116,36 @@ class Ping(ClientMessage):
 
 
 AnyClientMessage = Annotated[
-    Shoot | PlaceCue | Aim | Call | Decide | PushOut | Rerack | Chat | Rematch | Concede
-    | Sync | Ping,
+    Shoot
+    | PlaceCue
+    | Aim
+    | Call
+    | Decide
+    | PushOut
+    | Rerack
+    | Chat
+    | Rematch
+    | Concede
+    | Sync
+    | Ping,
     Field(discriminator="type"),
 ]
 CLIENT_TYPES = frozenset(
-    ("shoot", "place_cue", "aim", "call", "decide", "push_out", "rerack", "chat", "rematch",
-     "concede", "sync", "ping"))
+    (
+        "shoot",
+        "place_cue",
+        "aim",
+        "call",
+        "decide",
+        "push_out",
+        "rerack",
+        "chat",
+        "rematch",
+        "concede",
+        "sync",
+        "ping",
+    )
+)
 _client_adapter: TypeAdapter[AnyClientMessage] = TypeAdapter(AnyClientMessage)
 
 
@@ -144,12 +166,15 @@ def parse_client_message(text: str) -> AnyClientMessage:
     except ValidationError as exc:
         errors = exc.errors(include_url=False)
         kinds = {e["type"] for e in errors}
-        if kinds & {"json_invalid", "dict_type", "model_attributes_type", "model_type"} \
-                and not errors[0]["loc"][1:]:
+        if (
+            kinds & {"json_invalid", "dict_type", "model_attributes_type", "model_type"}
+            and not errors[0]["loc"][1:]
+        ):
             raise BadMessage("bad_json", "The message must be a JSON object.") from None
         if kinds & {"union_tag_not_found", "union_tag_invalid"}:
-            raise BadMessage("unknown_type", "Unknown or missing message type; see "
-                             "docs/protocol.md.") from None
+            raise BadMessage(
+                "unknown_type", "Unknown or missing message type; see docs/protocol.md."
+            ) from None
         ref = _type_of(text)
         first = errors[0]
         where = ".".join(str(p) for p in first["loc"][1:]) or "message"
@@ -162,5 +187,3 @@ def _type_of(text: str) -> str | None:
     except (ValueError, AttributeError):
         return None
     return value if value in CLIENT_TYPES else None
-
-

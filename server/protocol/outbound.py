@@ -219,8 +219,16 @@ class ErrorMessage(ServerMessage):
 
 
 AnyServerMessage = Annotated[
-    Welcome | FrameMessage | EventMessage | ShotResultMessage | StateMessage | AimRelay
-    | ChatMessage | Presence | Pong | ErrorMessage,
+    Welcome
+    | FrameMessage
+    | EventMessage
+    | ShotResultMessage
+    | StateMessage
+    | AimRelay
+    | ChatMessage
+    | Presence
+    | Pong
+    | ErrorMessage,
     Field(discriminator="type"),
 ]
 AnyReplayMessage = Annotated[

@@ -52,12 +52,19 @@ class Timed(NamedTuple):
         return {"type": self.kind, **json.loads(self.body)}
 
 
-def frame_rows(ids: np.ndarray, positions: np.ndarray, cels: np.ndarray,
-               on_table: np.ndarray) -> list[BallRow]:
+def frame_rows(
+    ids: np.ndarray, positions: np.ndarray, cels: np.ndarray, on_table: np.ndarray
+) -> list[BallRow]:
     """[id, x_mm, y_mm, cel] for every ball on the table."""
     mm = np.rint(positions * 1000.0).astype(np.int64)
-    rows = zip(ids.tolist(), mm[:, 0].tolist(), mm[:, 1].tolist(), cels.tolist(),
-               on_table.tolist(), strict=True)
+    rows = zip(
+        ids.tolist(),
+        mm[:, 0].tolist(),
+        mm[:, 1].tolist(),
+        cels.tolist(),
+        on_table.tolist(),
+        strict=True,
+    )
     return [(i, x, y, c) for i, x, y, c, on in rows if on]
 
 
@@ -76,8 +83,14 @@ class StreamFrames:
         return len(self.ticks)
 
     def rows(self, j: int) -> list[BallRow]:
-        rows = zip(self.ids.tolist(), self.mm[j, :, 0].tolist(), self.mm[j, :, 1].tolist(),
-                   self.cels[j].tolist(), self.on_table[j].tolist(), strict=True)
+        rows = zip(
+            self.ids.tolist(),
+            self.mm[j, :, 0].tolist(),
+            self.mm[j, :, 1].tolist(),
+            self.cels[j].tolist(),
+            self.on_table[j].tolist(),
+            strict=True,
+        )
         return [(i, x, y, c) for i, x, y, c, on in rows if on]
 
 
@@ -105,18 +118,26 @@ def stream_frames(result: ShotResult, frame_every: int) -> StreamFrames:
         ticks.append(count)
     if count == 0:
         final = result.final
-        return StreamFrames(result.ids, np.array(ticks, dtype=np.int64),
-                            np.rint(final.positions * 1000.0).astype(np.int64)[None],
-                            np.zeros((1, len(result.ids)), dtype=np.int64),
-                            final.on_table.copy()[None])
+        return StreamFrames(
+            result.ids,
+            np.array(ticks, dtype=np.int64),
+            np.rint(final.positions * 1000.0).astype(np.int64)[None],
+            np.zeros((1, len(result.ids)), dtype=np.int64),
+            final.on_table.copy()[None],
+        )
     index = np.array(ticks, dtype=np.int64) - 1
-    return StreamFrames(result.ids, index + 1,
-                        np.rint(frames.positions[index] * 1000.0).astype(np.int64),
-                        frames.cels[index].astype(np.int64), frames.on_table[index])
+    return StreamFrames(
+        result.ids,
+        index + 1,
+        np.rint(frames.positions[index] * 1000.0).astype(np.int64),
+        frames.cels[index].astype(np.int64),
+        frames.on_table[index],
+    )
 
 
-def plan_shot(result: ShotResult, shot_id: int, frame_every: int,
-              frames_per_message: int = 1) -> ShotPlan:
+def plan_shot(
+    result: ShotResult, shot_id: int, frame_every: int, frames_per_message: int = 1
+) -> ShotPlan:
     """Every frame and event message of a shot, encoded, in sending order.
 
     With `frames_per_message` m > 1 a `frame` message goes out every m-th frame and carries
@@ -128,15 +149,16 @@ def plan_shot(result: ShotResult, shot_id: int, frame_every: int,
     tick = result.frames.tick
     frames = stream_frames(result, frame_every)
     last = len(frames) - 1
-    bodies = encode_frames(shot_id, frames.ticks, frames.ids, frames.mm, frames.cels,
-                           frames.on_table, last)
+    bodies = encode_frames(
+        shot_id, frames.ticks, frames.ids, frames.mm, frames.cels, frames.on_table, last
+    )
     ticks = frames.ticks.tolist()
     items: list[tuple[float, int, Timed]] = []
     for j in [*range(0, last, frames_per_message), last]:
         body = bodies[j]
         ahead = range(j + 1, min(j + frames_per_message, last))
         if ahead:
-            rest = ",".join("{" + bodies[i][bodies[i].index('"tick"'):] for i in ahead)
+            rest = ",".join("{" + bodies[i][bodies[i].index('"tick"') :] for i in ahead)
             body = f'{body[:-1]},"ahead":[{rest}]}}'
         at = ticks[j] * tick
         items.append((at, 1, Timed(at, "frame", body, j != last, tick=ticks[j], frame=j)))
@@ -147,8 +169,7 @@ def plan_shot(result: ShotResult, shot_id: int, frame_every: int,
         if later:
             also = ",".join("{" + _without_shot(event_body(shot_id, t, e)) for t, e in later)
             body = f'{body[:-1]},"also":[{also}]}}'
-        items.append((event.time, 0, Timed(event.time, "event", body, False,
-                                           tick=event_tick)))
+        items.append((event.time, 0, Timed(event.time, "event", body, False, tick=event_tick)))
     items.sort(key=lambda item: (item[0], item[1]))
     return ShotPlan(frames, [timed for _, _, timed in items])
 
@@ -161,13 +182,15 @@ def event_body(shot_id: int, event_tick: int, event: Event) -> str:
     if not (math.isfinite(t) and math.isfinite(speed)):
         raise ValueError("an event time or speed is not finite")
     ids = ",".join(str(int(i)) for i in event.ids)
-    return (f'{{"shot":{int(shot_id)},"tick":{int(event_tick)},"t":{t!r},'
-            f'"kind":{json.dumps(event.kind)},"ids":[{ids}],"speed":{speed!r},'
-            f'"target":{int(event.target)}}}')
+    return (
+        f'{{"shot":{int(shot_id)},"tick":{int(event_tick)},"t":{t!r},'
+        f'"kind":{json.dumps(event.kind)},"ids":[{ids}],"speed":{speed!r},'
+        f'"target":{int(event.target)}}}'
+    )
 
 
 def _without_shot(body: str) -> str:
-    return body[body.index('"tick"'):]
+    return body[body.index('"tick"') :]
 
 
 def _grouped(sounds: list[tuple[int, Event]], window: float) -> list[list[tuple[int, Event]]]:
@@ -202,8 +225,11 @@ def _sounds(events: list[Event], tick: float) -> list[tuple[int, Event]]:
     kept: list[tuple[int, Event]] = []
     for event_tick, items in by_tick.items():
         items.sort(key=lambda e: (e.kind not in ALWAYS_SENT, -e.speed))
-        kept.extend((event_tick, e) for i, e in enumerate(items)
-                    if i < MAX_SOUNDS_PER_TICK or e.kind in ALWAYS_SENT)
+        kept.extend(
+            (event_tick, e)
+            for i, e in enumerate(items)
+            if i < MAX_SOUNDS_PER_TICK or e.kind in ALWAYS_SENT
+        )
     kept.sort(key=lambda item: item[1].time)
     return kept
 

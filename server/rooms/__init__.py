@@ -12,5 +12,13 @@ from .recorder import StoreObserver
 from .registry import RoomRegistry
 from .room import Room
 
-__all__ = ["SYSTEM_CLOCK", "ActionError", "Clock", "LiveRoom", "Room", "RoomRegistry",
-           "SeedSource", "StoreObserver"]
+__all__ = [
+    "SYSTEM_CLOCK",
+    "ActionError",
+    "Clock",
+    "LiveRoom",
+    "Room",
+    "RoomRegistry",
+    "SeedSource",
+    "StoreObserver",
+]

@@ -69,8 +69,13 @@ class _Timer:
 class LiveRoom:
     """Drives one `Room`: dispatches members' messages, streams shots, runs the clocks."""
 
-    def __init__(self, room: Room, settings: Settings,
-                 observer: RoomObserver | None = None, clock: Clock = SYSTEM_CLOCK) -> None:
+    def __init__(
+        self,
+        room: Room,
+        settings: Settings,
+        observer: RoomObserver | None = None,
+        clock: Clock = SYSTEM_CLOCK,
+    ) -> None:
         self.room = room
         self.settings = settings
         self.clock = clock
@@ -135,8 +140,13 @@ class LiveRoom:
             conn.push(encoded, False)
 
     def broadcast_presence(self) -> None:
-        self.broadcast(Presence(players=self.room.players_info(),
-                                spectators=self.room.spectators, grace=self.grace_info()))
+        self.broadcast(
+            Presence(
+                players=self.room.players_info(),
+                spectators=self.room.spectators,
+                grace=self.grace_info(),
+            )
+        )
 
     # ---- membership -------------------------------------------------------------------
 
@@ -170,12 +180,21 @@ class LiveRoom:
         else:
             self.room.spectators += 1
         self.members[conn.id] = conn
-        self.reply(conn, Welcome(room_id=self.room.room_id, seat=conn.seat,
-                                 role="spectator" if conn.seat is None else "player",
-                                 name=conn.name, seq=self.seq, tick_hz=TICK_HZ,
-                                 frame_every=self.settings.frame_every,
-                                 frames_per_message=self.settings.frames_per_message,
-                                 server_time=self.clock.wall(), limits=LIMITS))
+        self.reply(
+            conn,
+            Welcome(
+                room_id=self.room.room_id,
+                seat=conn.seat,
+                role="spectator" if conn.seat is None else "player",
+                name=conn.name,
+                seq=self.seq,
+                tick_hz=TICK_HZ,
+                frame_every=self.settings.frame_every,
+                frames_per_message=self.settings.frames_per_message,
+                server_time=self.clock.wall(),
+                limits=LIMITS,
+            ),
+        )
         self.send_state(conn)
         self.broadcast_presence()
 
@@ -234,12 +253,14 @@ class LiveRoom:
                 line = "".join(ch if ch.isprintable() else " " for ch in msg.text).strip()
                 if not line:
                     raise ActionError("bad_message", "text: the message is empty")
-                self.broadcast(ChatMessage(seat=seat, name=room.name_of(seat), text=line,
-                                           at=self.clock.wall()))
+                self.broadcast(
+                    ChatMessage(seat=seat, name=room.name_of(seat), text=line, at=self.clock.wall())
+                )
             case "aim":
                 room.check_aim(seat)
-                self.relay(AimRelay(seat=seat, angle=msg.angle, power=msg.power, tip=msg.tip),
-                           exclude=conn)
+                self.relay(
+                    AimRelay(seat=seat, angle=msg.angle, power=msg.power, tip=msg.tip), exclude=conn
+                )
             case "shoot":
                 assert isinstance(msg, Shoot)
                 self._shoot(seat, msg)
@@ -289,8 +310,7 @@ class LiveRoom:
                 self.start_shot(*pending)
                 return
             except ActionError as exc:
-                log.warning("room %s: stored shot not replayed: %s", self.room.room_id,
-                            exc.message)
+                log.warning("room %s: stored shot not replayed: %s", self.room.room_id, exc.message)
         self._arm_clock(restart=True)
 
     # ---- shots ------------------------------------------------------------------------
@@ -309,10 +329,12 @@ class LiveRoom:
         self._cancel_clock()
         self.observer.shot_started(self.room, seat, shot, shot_id)
         self._stream = asyncio.get_running_loop().create_task(
-            self._play(seat, shot, shot_id, before, time.perf_counter()))
+            self._play(seat, shot, shot_id, before, time.perf_counter())
+        )
 
-    async def _play(self, seat: int, shot: Shot, shot_id: int, before: BallSet,
-                    started: float) -> None:
+    async def _play(
+        self, seat: int, shot: Shot, shot_id: int, before: BallSet, started: float
+    ) -> None:
         room = self.room
         assert room.match is not None
         table = room.match.game.table
@@ -322,10 +344,17 @@ class LiveRoom:
             outcome = room.apply_shot(result)
             judged = time.perf_counter()
             if judged - started > SLOW_SHOT:
-                log.warning("room %s shot %s: %.0f ms to simulate and plan, %.0f ms to judge "
-                            "(%d ticks, %d events, %s)", room.room_id, shot_id,
-                            1000 * (prepared - started), 1000 * (judged - prepared),
-                            len(result.frames), len(result.events), shot)
+                log.warning(
+                    "room %s shot %s: %.0f ms to simulate and plan, %.0f ms to judge "
+                    "(%d ticks, %d events, %s)",
+                    room.room_id,
+                    shot_id,
+                    1000 * (prepared - started),
+                    1000 * (judged - prepared),
+                    len(result.frames),
+                    len(result.events),
+                    shot,
+                )
         except Exception:
             log.exception("shot %s in room %s failed", shot_id, room.room_id)
             room.abort_shot()
@@ -362,9 +391,16 @@ class LiveRoom:
     def _send_result(self, shot_id: int | None, cause: ResultCause, outcome: Outcome) -> None:
         match = self.room.match
         assert match is not None
-        self.broadcast(ShotResultMessage(shot=shot_id, cause=cause,
-                                         outcome=outcome, score=list(match.score),
-                                         match_over=match.over, match_winner=match.winner))
+        self.broadcast(
+            ShotResultMessage(
+                shot=shot_id,
+                cause=cause,
+                outcome=outcome,
+                score=list(match.score),
+                match_over=match.over,
+                match_winner=match.winner,
+            )
+        )
 
     def _after_result(self) -> None:
         self._arm_clock(restart=True)
@@ -387,8 +423,9 @@ class LiveRoom:
         if self._clock is None:
             return None
         remaining = max(0.0, self._clock.deadline - asyncio.get_running_loop().time())
-        return ClockInfo(seat=self._clock.seat, remaining=round(remaining, 2),
-                         limit=self.room.shot_clock)
+        return ClockInfo(
+            seat=self._clock.seat, remaining=round(remaining, 2), limit=self.room.shot_clock
+        )
 
     def _arm_clock(self, restart: bool) -> None:
         seat = self.room.acting_seat() if self.room.shot_clock > 0 else None
@@ -400,8 +437,9 @@ class LiveRoom:
         self._cancel_clock()
         loop = asyncio.get_running_loop()
         limit = self.room.shot_clock
-        self._clock = _Timer(seat, loop.time() + limit,
-                             loop.call_later(limit, self._on_clock, seat))
+        self._clock = _Timer(
+            seat, loop.time() + limit, loop.call_later(limit, self._on_clock, seat)
+        )
 
     def _cancel_clock(self) -> None:
         if self._clock is not None:
@@ -426,8 +464,10 @@ class LiveRoom:
         if not self._grace:
             return []
         now = asyncio.get_running_loop().time()
-        return [GraceInfo(seat=t.seat, remaining=round(max(0.0, t.deadline - now), 2))
-                for t in sorted(self._grace.values(), key=lambda t: t.seat)]
+        return [
+            GraceInfo(seat=t.seat, remaining=round(max(0.0, t.deadline - now), 2))
+            for t in sorted(self._grace.values(), key=lambda t: t.seat)
+        ]
 
     def _start_grace(self, seat: int) -> None:
         match = self.room.match
@@ -435,8 +475,9 @@ class LiveRoom:
             return
         loop = asyncio.get_running_loop()
         grace = self.settings.grace
-        self._grace[seat] = _Timer(seat, loop.time() + grace,
-                                   loop.call_later(grace, self._on_grace, seat))
+        self._grace[seat] = _Timer(
+            seat, loop.time() + grace, loop.call_later(grace, self._on_grace, seat)
+        )
 
     def _cancel_grace(self, seat: int) -> None:
         timer = self._grace.pop(seat, None)
@@ -457,6 +498,5 @@ class LiveRoom:
             timer.handle = asyncio.get_running_loop().call_later(0.2, self._on_grace, seat)
             return
         del self._grace[seat]
-        outcome = self.room.forfeit(seat, f"{seat_info.name} left the table and did not "
-                                    "come back.")
+        outcome = self.room.forfeit(seat, f"{seat_info.name} left the table and did not come back.")
         self._conclude("forfeit", outcome, absent=seat)

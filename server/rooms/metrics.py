@@ -50,13 +50,18 @@ class StreamMetrics:
         """Lateness of the frames sent in the last `window` seconds, in milliseconds."""
         late = sorted(v for t, v in self._samples if now - t <= window)
         starts = sorted(v for t, v in self._starts if now - t <= window)
-        return {"window": window, "frames": len(late),
-                "late_p50_ms": _ms(percentile(late, 50)),
-                "late_p99_ms": _ms(percentile(late, 99)),
-                "late_max_ms": _ms(late[-1] if late else math.nan),
-                "frames_sent": self.frames_sent, "frames_skipped": self.frames_skipped,
-                "shots": len(starts), "start_p50_ms": _ms(percentile(starts, 50)),
-                "start_p99_ms": _ms(percentile(starts, 99))}
+        return {
+            "window": window,
+            "frames": len(late),
+            "late_p50_ms": _ms(percentile(late, 50)),
+            "late_p99_ms": _ms(percentile(late, 99)),
+            "late_max_ms": _ms(late[-1] if late else math.nan),
+            "frames_sent": self.frames_sent,
+            "frames_skipped": self.frames_skipped,
+            "shots": len(starts),
+            "start_p50_ms": _ms(percentile(starts, 50)),
+            "start_p99_ms": _ms(percentile(starts, 99)),
+        }
 
 
 def _ms(seconds: float) -> float | None:

@@ -20,8 +20,9 @@ class RoomObserver(Protocol):
     def shot_started(self, room: Room, seat: int, shot: Shot, shot_id: int) -> None:
         """A shot was struck (the match is still as before it): save what a restart replays."""
 
-    def shot_played(self, room: Room, seat: int, shot: Shot, before: BallSet,
-                    outcome: Outcome, plan: ShotPlan) -> None:
+    def shot_played(
+        self, room: Room, seat: int, shot: Shot, before: BallSet, outcome: Outcome, plan: ShotPlan
+    ) -> None:
         """A shot was simulated and judged: `before` is the table it was played from,
         `plan` the motion every member is shown."""
 
@@ -45,8 +46,9 @@ class NullObserver:
     def shot_started(self, room: Room, seat: int, shot: Shot, shot_id: int) -> None:
         pass
 
-    def shot_played(self, room: Room, seat: int, shot: Shot, before: BallSet,
-                    outcome: Outcome, plan: ShotPlan) -> None:
+    def shot_played(
+        self, room: Room, seat: int, shot: Shot, before: BallSet, outcome: Outcome, plan: ShotPlan
+    ) -> None:
         pass
 
     def outcome(self, room: Room, cause: str, outcome: Outcome) -> None:

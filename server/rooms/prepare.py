@@ -4,12 +4,17 @@ or thread, see `ShotRunner`)."""
 from __future__ import annotations
 
 from server.engine import BallSet, Shot, ShotResult, Table, rack, simulate
-
 from server.protocol.plan import ShotPlan, plan_shot
 
 
-def prepare_shot(table: Table, before: BallSet, shot: Shot, shot_id: int,
-                 frame_every: int, frames_per_message: int) -> tuple[ShotResult, ShotPlan]:
+def prepare_shot(
+    table: Table,
+    before: BallSet,
+    shot: Shot,
+    shot_id: int,
+    frame_every: int,
+    frames_per_message: int,
+) -> tuple[ShotResult, ShotPlan]:
     """Simulate and plan a shot and encode its messages (runs in a worker thread)."""
     result = simulate(table, before, shot)
     return result, plan_shot(result, shot_id, frame_every, frames_per_message)

@@ -65,8 +65,7 @@ class StoreObserver:
         if tracked is None or (tracked.finished and not match.over):
             tracked = _Tracked(next(self._ids))
             self._matches[room.room_id] = tracked
-            args = (tracked.match_id, room.room_id, match.kind, list(match.players),
-                    match.race_to)
+            args = (tracked.match_id, room.room_id, match.kind, list(match.players), match.race_to)
             self.db.write(lambda repo: repo.start_match(*args), "start match")
         return tracked.match_id
 
@@ -80,8 +79,9 @@ class StoreObserver:
         text = encode(room_to_snapshot(room, match_id, pending_shot(shot_id, seat, shot)))
         self.db.write(lambda repo: repo.save_room(room.room_id, text), "save room")
 
-    def shot_played(self, room: Room, seat: int, shot: Shot, before: BallSet,
-                    outcome: Outcome, plan: ShotPlan) -> None:
+    def shot_played(
+        self, room: Room, seat: int, shot: Shot, before: BallSet, outcome: Outcome, plan: ShotPlan
+    ) -> None:
         if not self.active or room.match is None:
             return
         match = room.match
@@ -89,11 +89,20 @@ class StoreObserver:
         assert match_id is not None and room.shot is not None
         scored = outcome.frame_over and outcome.winner is not None
         game_no = match.games_played + (0 if scored else 1)
-        row = (match_id, room.shot.id, game_no, seat, to_data(shot),
-               table_fields(match.game.table), before.to_dict(), outcome.to_dict())
+        row = (
+            match_id,
+            room.shot.id,
+            game_no,
+            seat,
+            to_data(shot),
+            table_fields(match.game.table),
+            before.to_dict(),
+            outcome.to_dict(),
+        )
         engine, motion = ENGINE_VERSION, motion_text(plan)
-        self.db.write(lambda repo: repo.record_shot(*row, engine=engine, motion=motion),
-                      "record shot")
+        self.db.write(
+            lambda repo: repo.record_shot(*row, engine=engine, motion=motion), "record shot"
+        )
         self._scored(room, "shot", outcome)
 
     def outcome(self, room: Room, cause: str, outcome: Outcome) -> None:
@@ -117,9 +126,16 @@ class StoreObserver:
         self.db.write(lambda repo: repo.delete_room(room_id), "delete room")
         if tracked is not None and not tracked.finished and room.match is not None:
             score = list(room.match.score)
-            self.db.write(lambda repo: repo.finish_match(
-                tracked.match_id, score, None, "The room closed before the end.",
-                status="abandoned"), "abandon match")
+            self.db.write(
+                lambda repo: repo.finish_match(
+                    tracked.match_id,
+                    score,
+                    None,
+                    "The room closed before the end.",
+                    status="abandoned",
+                ),
+                "abandon match",
+            )
 
     # ---- helpers ----------------------------------------------------------------------
 
@@ -129,8 +145,14 @@ class StoreObserver:
         if match is None or match_id is None:
             return
         if outcome.frame_over and outcome.winner is not None:
-            args = (match_id, match.games_played, outcome.winner, outcome.reason, cause,
-                    list(match.score))
+            args = (
+                match_id,
+                match.games_played,
+                outcome.winner,
+                outcome.reason,
+                cause,
+                list(match.score),
+            )
             self.db.write(lambda repo: repo.record_game(*args), "record game")
         self._finish_if_over(room)
 

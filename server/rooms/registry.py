@@ -26,16 +26,22 @@ CLOSE_EXPIRED = 1001
 class RoomRegistry:
     """Creates, finds, lists and expires rooms. One process owns its rooms (one worker)."""
 
-    def __init__(self, settings: Settings, observer: RoomObserver | None = None,
-                 clock: Clock = SYSTEM_CLOCK, seeds: SeedSource | None = None) -> None:
+    def __init__(
+        self,
+        settings: Settings,
+        observer: RoomObserver | None = None,
+        clock: Clock = SYSTEM_CLOCK,
+        seeds: SeedSource | None = None,
+    ) -> None:
         self.settings = settings
         self.observer = observer
         self.clock = clock
         self.seeds = seeds or SeedSource()
         self.rooms: dict[str, LiveRoom] = {}
         self.metrics = StreamMetrics()
-        self.runner = ShotRunner(settings.shot_workers, settings.frame_every,
-                                 settings.frames_per_message)
+        self.runner = ShotRunner(
+            settings.shot_workers, settings.frame_every, settings.frames_per_message
+        )
 
     def create(self, game: str, race_to: int = 1, shot_clock: float | None = None) -> LiveRoom:
         if len(self.rooms) >= self.settings.max_rooms:
@@ -44,8 +50,14 @@ class RoomRegistry:
         while room_id in self.rooms:
             room_id = new_room_id()
         clock = self.settings.shot_clock if shot_clock is None else shot_clock
-        room = Room(room_id, game, race_to=race_to, shot_clock=clock, seed=self.seeds.next(),
-                    created_at=self.clock.wall())
+        room = Room(
+            room_id,
+            game,
+            race_to=race_to,
+            shot_clock=clock,
+            seed=self.seeds.next(),
+            created_at=self.clock.wall(),
+        )
         live = LiveRoom(room, self.settings, self.observer, self.clock)
         self._share(live)
         self.rooms[room_id] = live
@@ -106,18 +118,23 @@ class RoomRegistry:
 
     def check_senders(self, now: float) -> int:
         """Drop every member whose outbox has been stuck past its deadline (loop time)."""
-        return sum(conn.check_deadline(now) for live in list(self.rooms.values())
-                   for conn in list(live.members.values()))
+        return sum(
+            conn.check_deadline(now)
+            for live in list(self.rooms.values())
+            for conn in list(live.members.values())
+        )
 
     def stats(self, window: float) -> dict:
         """Rooms, members and the frame send lateness of the last `window` seconds."""
         now = asyncio.get_running_loop().time()
         members = [c for live in self.rooms.values() for c in live.members.values()]
-        return {"rooms": len(self.rooms),
-                "rolling": sum(live.room.shot is not None for live in self.rooms.values()),
-                "connections": len(members),
-                "queued": sum(c.pending for c in members),
-                "stream": self.metrics.summary(now, window)}
+        return {
+            "rooms": len(self.rooms),
+            "rolling": sum(live.room.shot is not None for live in self.rooms.values()),
+            "connections": len(members),
+            "queued": sum(c.pending for c in members),
+            "stream": self.metrics.summary(now, window),
+        }
 
     async def run_watchdog(self) -> None:
         """A few checks a second for all connections: cheaper than a timer per send."""

@@ -29,31 +29,41 @@ class EngineChanged(Exception):
 
 
 def resimulate(record: ShotRecord) -> ShotResult:
-    return simulate(from_data(Table, record.table), BallSet.from_dict(record.balls),
-                    from_data(Shot, record.shot))
+    return simulate(
+        from_data(Table, record.table),
+        BallSet.from_dict(record.balls),
+        from_data(Shot, record.shot),
+    )
 
 
-def replay_motion(record: ShotRecord, frame_every: int,
-                  frames_per_message: int = 1) -> list[tuple[float, str, str]]:
+def replay_motion(
+    record: ShotRecord, frame_every: int, frames_per_message: int = 1
+) -> list[tuple[float, str, str]]:
     """The `frame` and `event` messages of the shot as (at, kind, body), as shown live."""
     if record.motion is not None:
         return motion_messages(record.motion)
     if (record.engine or FIRST_RECORDED_ENGINE) != ENGINE_VERSION:
-        raise EngineChanged(f"shot {record.n} was played by engine {record.engine}; this "
-                            f"server runs {ENGINE_VERSION}")
+        raise EngineChanged(
+            f"shot {record.n} was played by engine {record.engine}; this "
+            f"server runs {ENGINE_VERSION}"
+        )
     plan = plan_shot(resimulate(record), record.room_shot, frame_every, frames_per_message)
     return [(timed.at, timed.kind, timed.body) for timed in plan]
 
 
 def result_message(record: ShotRecord, match: MatchRecord, seq: int) -> ReplayResultMessage:
     """The `shot_result` closing a replay: the outcome as it was judged then."""
-    return ReplayResultMessage(seq=seq, shot=record.room_shot,
-                               outcome=Outcome.from_dict(record.outcome),
-                               replay=ReplayRef(match=match.id, n=record.n))
+    return ReplayResultMessage(
+        seq=seq,
+        shot=record.room_shot,
+        outcome=Outcome.from_dict(record.outcome),
+        replay=ReplayRef(match=match.id, n=record.n),
+    )
 
 
-async def stream_replay(messages: list[tuple[float, str, str]], record: ShotRecord,
-                        match: MatchRecord, pace: float) -> AsyncIterator[str]:
+async def stream_replay(
+    messages: list[tuple[float, str, str]], record: ShotRecord, match: MatchRecord, pace: float
+) -> AsyncIterator[str]:
     """NDJSON lines paced like the live stream (`pace` 2.0 plays twice as fast)."""
     loop = asyncio.get_running_loop()
     start = loop.time()

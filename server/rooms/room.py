@@ -117,13 +117,16 @@ class Room:
             raise ActionError("bad_name", f"A name is 1 to {MAX_NAME} printable characters.")
         free = next((i for i, s in enumerate(self.seats) if s is None), None)
         if free is None:
-            raise ActionError("room_full", "Both seats are taken." if len(self.seats) == 2
-                              else "This practice table has one seat and it is taken.")
+            raise ActionError(
+                "room_full",
+                "Both seats are taken."
+                if len(self.seats) == 2
+                else "This practice table has one seat and it is taken.",
+            )
         token = new_token()
         self.seats[free] = Seat(clean, hash_token(token))
         if all(self.seats):
-            self.match = Match(self.game, self.player_names(), race_to=self.race_to,
-                               seed=self.seed)
+            self.match = Match(self.game, self.player_names(), race_to=self.race_to, seed=self.seed)
         return free, token
 
     def seat_of(self, token: str) -> int | None:
@@ -144,8 +147,11 @@ class Room:
         return s.name if s else f"seat {seat}"
 
     def players_info(self) -> list[PlayerInfo]:
-        return [PlayerInfo(seat=i, name=s.name, connected=s.connected)
-                for i, s in enumerate(self.seats) if s is not None]
+        return [
+            PlayerInfo(seat=i, name=s.name, connected=s.connected)
+            for i, s in enumerate(self.seats)
+            if s is not None
+        ]
 
     # ---- what is shown ----------------------------------------------------------------
 
@@ -174,13 +180,18 @@ class Room:
         return decision.seat if decision is not None else self.match.game.turn
 
     def summary(self) -> dict:
-        return {"room_id": self.room_id, "game": self.game, "race_to": self.race_to,
-                "shot_clock": self.shot_clock, "seats": len(self.seats),
-                "status": self.status,
-                "players": [s.name if s else None for s in self.seats],
-                "spectators": self.spectators,
-                "score": list(self.match.score) if self.match else None,
-                "created_at": self.created_at}
+        return {
+            "room_id": self.room_id,
+            "game": self.game,
+            "race_to": self.race_to,
+            "shot_clock": self.shot_clock,
+            "seats": len(self.seats),
+            "status": self.status,
+            "players": [s.name if s else None for s in self.seats],
+            "spectators": self.spectators,
+            "score": list(self.match.score) if self.match else None,
+            "created_at": self.created_at,
+        }
 
     def resting_balls(self) -> list[BallRow]:
         if self.match is None:
@@ -199,11 +210,17 @@ class Room:
         return self.match.game.table if self.match else Table.pool("9ft")
 
     def room_info(self) -> RoomInfo:
-        return RoomInfo(room_id=self.room_id, game=self.game, race_to=self.race_to,
-                        shot_clock=self.shot_clock, seats=len(self.seats),
-                        status=self.status,
-                        players=self.players_info(), spectators=self.spectators,
-                        rematch=sorted(self.rematch_votes))
+        return RoomInfo(
+            room_id=self.room_id,
+            game=self.game,
+            race_to=self.race_to,
+            shot_clock=self.shot_clock,
+            seats=len(self.seats),
+            status=self.status,
+            players=self.players_info(),
+            spectators=self.spectators,
+            rematch=sorted(self.rematch_votes),
+        )
 
     def state_message(self, clock: ClockInfo | None, grace: list[GraceInfo]) -> StateMessage:
         """The `state` message (its `seq` set by the sender)."""
@@ -217,9 +234,16 @@ class Room:
             match_state = self.match.public_state() if self.match else None
             balls = self.resting_balls()
             shot_info = None
-        return StateMessage(room=self.room_info(), phase=self.phase,
-                            table=self.table_dict(), balls=balls, shot=shot_info, clock=clock,
-                            grace=grace, match=match_state)
+        return StateMessage(
+            room=self.room_info(),
+            phase=self.phase,
+            table=self.table_dict(),
+            balls=balls,
+            shot=shot_info,
+            clock=clock,
+            grace=grace,
+            match=match_state,
+        )
 
     # ---- actions ----------------------------------------------------------------------
 
@@ -244,8 +268,9 @@ class Room:
             match.game.check_shot(seat)
         self.shots_played += 1
         self.rematch_votes.clear()
-        self.shot = ShotInProgress(self.shots_played, seat, match.public_state(),
-                                   self.resting_balls())
+        self.shot = ShotInProgress(
+            self.shots_played, seat, match.public_state(), self.resting_balls()
+        )
         return self.shots_played, match.game.balls.copy()
 
     def apply_shot(self, result: ShotResult) -> Outcome:
@@ -307,8 +332,7 @@ class Room:
     def check_aim(self, seat: int | None) -> None:
         match, seat = self._require_player(seat)
         if seat != self.acting_seat() and not self.practice:
-            raise ActionError("not_your_turn", f"It is {self.name_of(match.game.turn)}'s "
-                              "turn.")
+            raise ActionError("not_your_turn", f"It is {self.name_of(match.game.turn)}'s turn.")
 
     def concede(self, seat: int | None) -> Outcome:
         match, seat = self._require_player(seat)

@@ -22,9 +22,9 @@ from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 
 from server.engine import BallSet, Shot, ShotInMotion, ShotResult, Table
+from server.protocol.plan import ShotPlan, plan_shot
 
 from .prepare import prepare_shot, warm_up
-from server.protocol.plan import ShotPlan, plan_shot
 
 log = logging.getLogger(__name__)
 
@@ -49,20 +49,27 @@ class ShotRunner:
         as fast as any); without workers, load it in this process."""
         loop = asyncio.get_running_loop()
         if self.workers > 0:
-            self._pool = ProcessPoolExecutor(self.workers,
-                                             mp_context=multiprocessing.get_context("spawn"))
-            await asyncio.gather(*(loop.run_in_executor(self._pool, warm_up, self.frame_every)
-                                   for _ in range(self.workers)))
+            self._pool = ProcessPoolExecutor(
+                self.workers, mp_context=multiprocessing.get_context("spawn")
+            )
+            await asyncio.gather(
+                *(
+                    loop.run_in_executor(self._pool, warm_up, self.frame_every)
+                    for _ in range(self.workers)
+                )
+            )
         else:
             await loop.run_in_executor(self._threads, warm_up, self.frame_every)
 
-    async def prepare(self, table: Table, before: BallSet, shot: Shot,
-                      shot_id: int) -> tuple[ShotResult, ShotPlan]:
+    async def prepare(
+        self, table: Table, before: BallSet, shot: Shot, shot_id: int
+    ) -> tuple[ShotResult, ShotPlan]:
         args = (table, before, shot, shot_id, self.frame_every, self.frames_per_message)
         if self._pool is not None:
             try:
                 return await asyncio.get_running_loop().run_in_executor(
-                    self._pool, prepare_shot, *args)
+                    self._pool, prepare_shot, *args
+                )
             except BrokenProcessPool:
                 log.error("the shot worker process died; simulating in threads from now on")
                 self._pool = None

@@ -56,17 +56,26 @@ class SavedRoom:
     pending_id: int | None = None
 
 
-def room_to_snapshot(room: Room, match_id: int | None,
-                     pending: PendingShot | None = None) -> dict[str, Any]:
+def room_to_snapshot(
+    room: Room, match_id: int | None, pending: PendingShot | None = None
+) -> dict[str, Any]:
     """The room at rest (or just before `pending` was struck), as plain data."""
     shots_played = room.shots_played if pending is None else pending.id - 1
     data = SavedRoomData(
-        version=1, room_id=room.room_id, game=room.game, race_to=room.race_to,
-        shot_clock=room.shot_clock, seed=room.seed, created_at=room.created_at,
+        version=1,
+        room_id=room.room_id,
+        game=room.game,
+        race_to=room.race_to,
+        shot_clock=room.shot_clock,
+        seed=room.seed,
+        created_at=room.created_at,
         seats=[None if s is None else SavedSeat(s.name, s.token_hash) for s in room.seats],
         match=room.match.to_dict() if room.match is not None else None,
-        match_id=match_id, shots_played=shots_played,
-        rematch_votes=sorted(room.rematch_votes), pending=pending)
+        match_id=match_id,
+        shots_played=shots_played,
+        rematch_votes=sorted(room.rematch_votes),
+        pending=pending,
+    )
     result: dict[str, Any] = to_data(data)
     return result
 
@@ -76,8 +85,14 @@ def room_from_snapshot(data: dict[str, Any]) -> SavedRoom:
     if data.get("version") != 1:
         raise ValueError(f"unknown room snapshot version {data.get('version')!r}")
     saved = from_data(SavedRoomData, data)
-    room = Room(saved.room_id, saved.game, race_to=saved.race_to,
-                shot_clock=saved.shot_clock, seed=saved.seed, created_at=saved.created_at)
+    room = Room(
+        saved.room_id,
+        saved.game,
+        race_to=saved.race_to,
+        shot_clock=saved.shot_clock,
+        seed=saved.seed,
+        created_at=saved.created_at,
+    )
     room.seats = [None if s is None else Seat(s.name, s.token_hash) for s in saved.seats]
     room.match = Match.from_dict(saved.match) if saved.match is not None else None
     room.shots_played = saved.shots_played

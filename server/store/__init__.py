@@ -11,6 +11,11 @@ from .records import GameRecord, MatchRecord, PendingShot, RoomSnapshot, ShotRec
 from .repository import Repository
 
 __all__ = [
-    "Database", "GameRecord", "MatchRecord", "PendingShot", "Repository", "RoomSnapshot",
+    "Database",
+    "GameRecord",
+    "MatchRecord",
+    "PendingShot",
+    "Repository",
+    "RoomSnapshot",
     "ShotRecord",
 ]

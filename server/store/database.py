@@ -23,6 +23,8 @@ from .schema import migrate
 
 log = logging.getLogger(__name__)
 T = TypeVar("T")
+
+
 class Database:
     def __init__(self, path: Path | str) -> None:
         self.path = Path(path)
@@ -78,9 +80,11 @@ class Database:
 
     def write(self, fn: Callable[[Repository], object], what: str) -> None:
         """Fire and forget; a failure is logged (the game goes on without that record)."""
+
         def done(future: Future) -> None:
             if future.exception() is not None:
                 log.error("store: %s failed", what, exc_info=future.exception())
+
         self.submit(fn).add_done_callback(done)
 
     def run(self, fn: Callable[[Repository], T]) -> T:

@@ -69,7 +69,7 @@ def test_match_game_and_shot_round_trip_exactly(db: Database) -> None:
         "finished", [0, 1], 1, "Ben reached 1.")
     assert (match.games, match.shots, match.started_at, match.finished_at) == (1, 2, 100.0,
                                                                                200.0)
-    assert match.to_dict()["winner_name"] == "Ben"
+    assert match.winner is not None and match.players[match.winner] == "Ben"
     games = db.run(lambda repo: repo.games(7))
     assert [(g.n, g.winner, g.score) for g in games] == [(1, 1, [0, 1])]
     stored = db.run(lambda repo: repo.shot(7, 1))
@@ -140,3 +140,23 @@ def test_call_from_the_event_loop_and_errors_come_back(db: Database) -> None:
     db.close()
     with pytest.raises(RuntimeError):
         db.run(lambda r: r.rooms())
+
+
+def test_a_shot_keeps_its_engine_version_and_motion(tmp_path: Path) -> None:
+    db = Database(tmp_path / "m.db")
+    motion = "".join(f"{i / 20!r} frame {{\"shot\":1,\"tick\":{i * 6}}}\n" for i in range(200))
+
+    def write(repo: Repository) -> None:
+        repo.start_match(1, "room", "eight_ball", ["Ana", "Ben"], 1)
+        repo.record_shot(1, 1, 1, 0, {"angle": 0.0, "speed": 1.0, "tip": [0.0, 0.0]},
+                         TABLE_FIELDS, awkward_balls().to_dict(), {}, engine="1+abc",
+                         motion=motion)
+
+    db.run(write)
+    stored = db.run(lambda repo: repo.shot(1, 1))
+    listed = db.run(lambda repo: repo.shots(1))
+    size = db.run(lambda repo: repo.conn.execute("SELECT length(motion) FROM shots").fetchone())
+    db.close()
+    assert stored is not None and (stored.engine, stored.motion) == ("1+abc", motion)
+    assert [(s.engine, s.motion) for s in listed] == [("1+abc", None)]  # lists skip motion
+    assert size[0] < len(motion) / 4  # stored compressed
