@@ -3,7 +3,7 @@
 export const CUE = 0;
 export const EIGHT = 8;
 
-/** Base colour of each number (9-15 repeat 1-7 as stripes). */
+/** @type {Record<number, string>} Base colour of each number (9-15 repeat 1-7 as stripes). */
 export const BALL_COLORS = {
   0: '#f7f3e6', // cue: ivory white
   1: '#f4c20d', // yellow
@@ -19,15 +19,21 @@ export const BALL_COLORS = {
 export const SOLIDS = [1, 2, 3, 4, 5, 6, 7];
 export const STRIPES = [9, 10, 11, 12, 13, 14, 15];
 
+/** @param {number} id */
 export function isStripe(id) {
   return id >= 9 && id <= 15;
 }
 
+/** @param {number} id */
 export function ballColor(id) {
   return BALL_COLORS[id >= 9 ? id - 8 : id];
 }
 
-/** Ball ids of a group name ("solids" | "stripes"), else []. */
+/**
+ * Ball ids of a group name ("solids" | "stripes"), else [].
+ * @param {string | null} group
+ * @returns {number[]}
+ */
 export function groupBalls(group) {
   if (group === 'solids') return SOLIDS;
   if (group === 'stripes') return STRIPES;

@@ -7,6 +7,37 @@
  * x along the long side, y up); the screen has y down, so the view flips y.
  */
 
+/** @typedef {[number, number]} Vec a point or a direction, table metres */
+
+/**
+ * The table as the server describes it (`state.table`, a match's `geometry`).
+ * @typedef {object} Table
+ * @property {number} length bed length between cushion noses, metres
+ * @property {number} width
+ * @property {number} ball_radius
+ * @property {number} head_string x of the head string
+ * @property {Vec} [head_spot]
+ * @property {Vec} [foot_spot]
+ * @property {{start: Vec, end: Vec, normal: Vec}[]} cushions noses, inward normals
+ * @property {{name?: string, center: Vec, radius: number, jaws?: Vec[], outward?: Vec}[]} pockets
+ */
+
+/**
+ * Table metres <-> CSS pixels on a canvas (see makeView).
+ * @typedef {object} View
+ * @property {number} scale CSS pixels per metre
+ * @property {number} ox
+ * @property {number} oy
+ * @property {number} width
+ * @property {number} height
+ * @property {boolean} rotated the table stands on end
+ * @property {(x: number, y: number) => Vec} toScreen table metres -> CSS pixels
+ * @property {(sx: number, sy: number) => Vec} toTable CSS pixels -> table metres
+ * @property {(a: number) => number} screenAngle a table direction as a screen angle (y down)
+ */
+
+/** @typedef {{x0: number, y0: number, x1: number, y1: number}} Area where a centre may go */
+
 /** Width of the cushion rubber and of the wooden rail, in metres (drawing only). */
 export const CUSHION_WIDTH = 0.05;
 export const RAIL_WIDTH = 0.1;
@@ -15,11 +46,17 @@ export const RAIL_WIDTH = 0.1;
  * The transform that fits the whole table (bed, cushions, rails) into a canvas of
  * `width` x `height` CSS pixels with `margin` CSS pixels around it. On a portrait canvas
  * the table stands on end (head at the top) so it stays as large as possible.
+ * @param {Table} table
+ * @param {number} width
+ * @param {number} height
+ * @param {number} [margin]
+ * @returns {View}
  */
 export function makeView(table, width, height, margin = 8) {
   const border = CUSHION_WIDTH + RAIL_WIDTH;
   const totalL = table.length + 2 * border;
   const totalW = table.width + 2 * border;
+  /** @type {(w: number, h: number) => number} */
   const fit = (w, h) => Math.max(1e-6, Math.min((w - 2 * margin) / totalL,
     (h - 2 * margin) / totalW));
   const rotated = fit(height, width) > fit(width, height) * 1.15;
@@ -49,9 +86,20 @@ export function makeView(table, width, height, margin = 8) {
   };
 }
 
+/** @type {(ax: number, ay: number, bx: number, by: number) => number} */
 export const dist = (ax, ay, bx, by) => Math.hypot(bx - ax, by - ay);
 
-/** Smallest t > eps with |p + t d - c| = r (d a unit vector), or Infinity. */
+/**
+ * Smallest t > eps with |p + t d - c| = r (d a unit vector), or Infinity.
+ * @param {number} px
+ * @param {number} py
+ * @param {number} dx
+ * @param {number} dy
+ * @param {number} cx
+ * @param {number} cy
+ * @param {number} r
+ * @param {number} [eps]
+ */
 export function rayCircle(px, py, dx, dy, cx, cy, r, eps = 1e-9) {
   const fx = px - cx;
   const fy = py - cy;
@@ -71,6 +119,12 @@ export function rayCircle(px, py, dx, dy, cx, cy, r, eps = 1e-9) {
  * Where a ball of radius r centred at p moving along unit d first touches a straight
  * cushion (nose from `start` to `end`, inward `normal`): the centre reaches the line offset
  * by r along the normal while its foot lies within the segment. Returns t or Infinity.
+ * @param {number} px
+ * @param {number} py
+ * @param {number} dx
+ * @param {number} dy
+ * @param {Table['cushions'][number]} cushion
+ * @param {number} r
  */
 export function rayCushion(px, py, dx, dy, cushion, r) {
   const [nx, ny] = cushion.normal;
@@ -90,63 +144,87 @@ export function rayCushion(px, py, dx, dy, cushion, r) {
 }
 
 /**
+ * @typedef {object} Guide
+ * @property {'ball'|'cushion'|'jaw'|'none'} kind what the cue ball touches first
+ * @property {number} t distance to it, metres
+ * @property {Vec} contact the cue ball's centre at contact (the ghost ball)
+ * @property {number | null} hitId the object ball touched
+ * @property {Vec | null} objectDir the object ball's likely direction (line of centres)
+ * @property {Vec | null} cueDir the cue ball's direction after contact
+ */
+
+/**
  * The aiming guide for a shot from the cue ball at `cue` ([x, y]) at `angle` (radians from
  * +x): the first ball, cushion or jaw it would touch.
  *
  * `balls` is an iterable of {id, x, y} on the table (the cue ball, id 0, is skipped).
- * Returns {kind: "ball"|"cushion"|"jaw"|"none", t, contact: [x, y] (cue-ball centre at
- * contact: the ghost ball), hitId, objectDir, cueDir} where `objectDir` is the object
- * ball's likely direction (the line of centres) and `cueDir` the cue ball's after contact
- * (tangent line for a ball, mirror for a cushion); directions are unit [dx, dy] or null.
+ * `objectDir` is the line of centres; `cueDir` the tangent line for a ball (stun), the
+ * mirror for a cushion or a jaw; directions are unit [dx, dy] or null.
+ * @param {Table} table
+ * @param {Iterable<{id: number, x: number, y: number}>} balls
+ * @param {Vec} cue
+ * @param {number} angle
+ * @returns {Guide}
  */
 export function castGuide(table, balls, cue, angle) {
   const r = table.ball_radius;
   const [px, py] = cue;
   const dx = Math.cos(angle);
   const dy = Math.sin(angle);
-  let best = { kind: 'none', t: Infinity, hitId: null, normal: null, center: null };
+  let t = Infinity;
+  /** @type {{kind: 'none'} | {kind: 'ball', id: number, center: Vec}
+   *   | {kind: 'cushion', normal: Vec} | {kind: 'jaw', center: Vec}} */
+  let hit = { kind: 'none' };
   for (const b of balls) {
     if (b.id === 0) continue;
-    const t = rayCircle(px, py, dx, dy, b.x, b.y, 2 * r);
-    if (t < best.t) best = { kind: 'ball', t, hitId: b.id, center: [b.x, b.y] };
+    const tb = rayCircle(px, py, dx, dy, b.x, b.y, 2 * r);
+    if (tb < t) { t = tb; hit = { kind: 'ball', id: b.id, center: [b.x, b.y] }; }
   }
   for (const c of table.cushions) {
-    const t = rayCushion(px, py, dx, dy, c, r);
-    if (t < best.t) best = { kind: 'cushion', t, hitId: null, normal: c.normal };
+    const tc = rayCushion(px, py, dx, dy, c, r);
+    if (tc < t) { t = tc; hit = { kind: 'cushion', normal: c.normal }; }
   }
   for (const c of table.cushions) {
     for (const j of [c.start, c.end]) {
-      const t = rayCircle(px, py, dx, dy, j[0], j[1], r);
-      if (t < best.t) best = { kind: 'jaw', t, hitId: null, center: j };
+      const tj = rayCircle(px, py, dx, dy, j[0], j[1], r);
+      if (tj < t) { t = tj; hit = { kind: 'jaw', center: j }; }
     }
   }
-  if (best.kind === 'none') {
+  if (hit.kind === 'none') {
     // Heading into a pocket mouth: run to the edge of the bed's bounding box and beyond.
-    const t = rayBox(px, py, dx, dy, -r * 3, -r * 3, table.length + 3 * r, table.width + 3 * r);
-    return { kind: 'none', t, contact: [px + t * dx, py + t * dy], hitId: null,
+    const tn = rayBox(px, py, dx, dy, -r * 3, -r * 3, table.length + 3 * r, table.width + 3 * r);
+    return { kind: 'none', t: tn, contact: [px + tn * dx, py + tn * dy], hitId: null,
       objectDir: null, cueDir: null };
   }
-  const contact = [px + best.t * dx, py + best.t * dy];
-  let objectDir = null;
-  let cueDir = null;
-  if (best.kind === 'ball') {
-    const n = unit(best.center[0] - contact[0], best.center[1] - contact[1]);
-    objectDir = n;
+  /** @type {Vec} */
+  const contact = [px + t * dx, py + t * dy];
+  if (hit.kind === 'ball') {
+    const n = unit(hit.center[0] - contact[0], hit.center[1] - contact[1]);
     // Stun shot: the cue ball leaves along the tangent line (nothing if dead straight).
     const along = dx * n[0] + dy * n[1];
     const tx = dx - along * n[0];
     const ty = dy - along * n[1];
-    cueDir = Math.hypot(tx, ty) > 1e-6 ? unit(tx, ty) : null;
-  } else {
-    const n = best.kind === 'cushion' ? best.normal
-      : unit(contact[0] - best.center[0], contact[1] - best.center[1]);
-    const along = dx * n[0] + dy * n[1];
-    cueDir = [dx - 2 * along * n[0], dy - 2 * along * n[1]];
+    const cueDir = Math.hypot(tx, ty) > 1e-6 ? unit(tx, ty) : null;
+    return { kind: 'ball', t, contact, hitId: hit.id, objectDir: n, cueDir };
   }
-  return { kind: best.kind, t: best.t, contact, hitId: best.hitId, objectDir, cueDir };
+  const n = hit.kind === 'cushion' ? hit.normal
+    : unit(contact[0] - hit.center[0], contact[1] - hit.center[1]);
+  const along = dx * n[0] + dy * n[1];
+  return { kind: hit.kind, t, contact, hitId: null, objectDir: null,
+    cueDir: [dx - 2 * along * n[0], dy - 2 * along * n[1]] };
 }
 
-/** Exit distance of a ray starting inside an axis-aligned box (Infinity-safe). */
+/**
+ * Exit distance of a ray starting inside an axis-aligned box (Infinity-safe).
+ * @param {number} px
+ * @param {number} py
+ * @param {number} dx
+ * @param {number} dy
+ * @param {number} x0
+ * @param {number} y0
+ * @param {number} x1
+ * @param {number} y1
+ */
 export function rayBox(px, py, dx, dy, x0, y0, x1, y1) {
   let t = Infinity;
   if (dx > 1e-12) t = Math.min(t, (x1 - px) / dx);
@@ -156,6 +234,11 @@ export function rayBox(px, py, dx, dy, x0, y0, x1, y1) {
   return Math.max(0, t);
 }
 
+/**
+ * @param {number} x
+ * @param {number} y
+ * @returns {Vec}
+ */
 export function unit(x, y) {
   const n = Math.hypot(x, y);
   return n > 0 ? [x / n, y / n] : [0, 0];
@@ -165,6 +248,9 @@ export function unit(x, y) {
  * Where the cue ball may be placed with ball in hand: the whole bed ("anywhere") or the
  * kitchen ("behind_head_string": x <= head string). Returns {x0, y0, x1, y1} for the ball
  * centre, or null when there is no ball in hand.
+ * @param {Table} table
+ * @param {string | null} ballInHand
+ * @returns {Area | null}
  */
 export function placementArea(table, ballInHand) {
   if (!ballInHand) return null;
@@ -176,6 +262,12 @@ export function placementArea(table, ballInHand) {
 /**
  * Clamp a wished cue-ball position into the allowed area and report whether it overlaps
  * another ball (the server has the last word; this only guides the drag).
+ * @param {Table} table
+ * @param {Area} area
+ * @param {Iterable<{id: number, x: number, y: number}>} balls
+ * @param {number} x
+ * @param {number} y
+ * @returns {{x: number, y: number, free: boolean}}
  */
 export function placeCue(table, area, balls, x, y) {
   const cx = Math.min(Math.max(x, area.x0), area.x1);
@@ -189,7 +281,13 @@ export function placeCue(table, area, balls, x, y) {
   return { x: cx, y: cy, free };
 }
 
-/** Index of the pocket whose hole contains (x, y) (with some slack), or -1. */
+/**
+ * Index of the pocket whose hole contains (x, y) (with some slack), or -1.
+ * @param {Table} table
+ * @param {number} x
+ * @param {number} y
+ * @param {number} [slack]
+ */
 export function pocketAt(table, x, y, slack = 1.6) {
   let best = -1;
   let bestD = Infinity;
@@ -204,6 +302,10 @@ export function pocketAt(table, x, y, slack = 1.6) {
  * Aiming by pulling back: the shot angle points from the cue ball towards the pressed point
  * `anchor`; pulling the pointer back (away from the target, along the aim line) sets the
  * power in [0, 1] over `maxPull` metres.
+ * @param {Vec} anchor
+ * @param {Vec} pointer
+ * @param {number} angle
+ * @param {number} maxPull
  */
 export function pullPower(anchor, pointer, angle, maxPull) {
   const back = -((pointer[0] - anchor[0]) * Math.cos(angle)
@@ -211,16 +313,29 @@ export function pullPower(anchor, pointer, angle, maxPull) {
   return Math.min(1, Math.max(0, back / maxPull));
 }
 
-/** Cue-ball speed in m/s for a power in [0, 1]: gentle at the bottom, a break at the top. */
+/** The softest shot, m/s: the client's choice of the bottom of the power scale. */
 export const MIN_SPEED = 0.25;
-export const MAX_SPEED = 10;
-export function speedFromPower(power) {
+
+/**
+ * Cue-ball speed in m/s for a power in [0, 1]: gentle at the bottom, the server's fastest
+ * shot (`limits.max_speed`) at the top. The curve gives fine control over soft shots.
+ * @param {number} power
+ * @param {number} maxSpeed
+ */
+export function speedFromPower(power, maxSpeed) {
   const p = Math.min(1, Math.max(0, power));
-  return MIN_SPEED + (MAX_SPEED - MIN_SPEED) * p ** 1.6;
+  const top = Math.max(MIN_SPEED, maxSpeed);
+  return MIN_SPEED + (top - MIN_SPEED) * p ** 1.6;
 }
 
-/** Clamp a tip offset (side, height) into the legal disc |tip| <= limit. */
-export function clampTip(side, height, limit = 0.5) {
+/**
+ * Clamp a tip offset (side, height) into the legal disc |tip| <= limit (`limits.max_tip`).
+ * @param {number} side
+ * @param {number} height
+ * @param {number} limit
+ * @returns {[number, number]}
+ */
+export function clampTip(side, height, limit) {
   const n = Math.hypot(side, height);
   if (n <= limit || n === 0) return [side, height];
   return [(side * limit) / n, (height * limit) / n];

@@ -12,11 +12,38 @@
  */
 
 import {
-  castGuide, pullPower, speedFromPower, placeCue, placementArea, pocketAt, dist,
+  castGuide, pullPower, speedFromPower, placeCue, placementArea, pocketAt, dist, clampTip,
 } from './geometry.js';
 
-/** Queue pointer actions from `canvas` as {type, sx, sy, pointerType} (CSS pixels). */
+/**
+ * @typedef {object} PointerAction
+ * @property {'down'|'move'|'up'|'cancel'} type
+ * @property {number} [sx] CSS pixels on the canvas
+ * @property {number} [sy]
+ * @property {number} [x] table metres (filled in by the loop from sx, sy)
+ * @property {number} [y]
+ * @property {string} [pointerType]
+ */
+
+/**
+ * What the controller needs to know about the table at the moment of an action.
+ * @typedef {object} Situation
+ * @property {any} table the server's table geometry (null before the first state)
+ * @property {{id: number, x: number, y: number}[]} balls
+ * @property {[number, number] | null} cue
+ * @property {boolean} myTurn
+ * @property {string | null} ballInHand
+ * @property {boolean} requiresCall
+ * @property {import('./limits.js').Limits} limits the server's limits
+ */
+
+/**
+ * Queue pointer actions from `canvas` as {type, sx, sy, pointerType} (CSS pixels).
+ * @param {HTMLCanvasElement} canvas
+ * @param {PointerAction[]} queue
+ */
 export function attachPointer(canvas, queue) {
+  /** @param {PointerEvent} ev */
   const pos = (ev) => {
     const r = canvas.getBoundingClientRect();
     return { sx: ev.clientX - r.left, sy: ev.clientY - r.top, pointerType: ev.pointerType };
@@ -42,11 +69,16 @@ export class AimController {
   constructor() {
     this.angle = 0; // radians, table frame
     this.power = 0;
+    /** @type {[number, number]} */
     this.tip = [0, 0];
-    this.mode = 'idle'; // idle | pulling | placing
+    /** @type {'idle'|'pulling'|'placing'} */
+    this.mode = 'idle';
+    /** @type {[number, number] | null} */
     this.anchor = null;
-    this.pointer = null; // last pointer position (table metres)
-    this.placing = null; // {x, y, free} wished cue-ball position while dragging
+    /** @type {[number, number] | null} last pointer position (table metres) */
+    this.pointer = null;
+    /** @type {{x: number, y: number, free: boolean} | null} wished cue-ball place while dragging */
+    this.placing = null;
     this.hoverPocket = -1;
     this.dirty = false; // aim changed since the last `aim` message
   }
@@ -59,14 +91,19 @@ export class AimController {
   }
 
   /**
-   * Handle one action {type, x, y} (table metres) given the situation:
-   * {table, balls (Array of {id, x, y}), cue ([x, y] or null), myTurn, ballInHand,
-   *  requiresCall}. Returns a list of messages to send (protocol objects).
+   * Handle one action {type, x, y} (table metres) given the situation. Returns the
+   * messages to send (protocol objects).
+   * @param {PointerAction} action
+   * @param {Situation} ctx
+   * @returns {Record<string, any>[]}
    */
   handle(action, ctx) {
+    /** @type {Record<string, any>[]} */
     const out = [];
     if (action.type === 'cancel') { this.reset(); this.dirty = true; return out; }
-    const p = action.x === undefined ? this.pointer : [action.x, action.y];
+    /** @type {[number, number] | null} */
+    const p = action.x === undefined || action.y === undefined ? this.pointer
+      : [action.x, action.y];
     if (p) this.pointer = p;
     if (!ctx.myTurn || !ctx.table) { this.reset(); return out; }
     const { table } = ctx;
@@ -100,7 +137,7 @@ export class AimController {
         if (!p) break;
         if (this.mode === 'placing' && area) {
           this.placing = placeCue(table, area, ctx.balls, p[0], p[1]);
-        } else if (this.mode === 'pulling') {
+        } else if (this.mode === 'pulling' && this.anchor) {
           this.power = pullPower(this.anchor, p, this.angle, MAX_PULL);
           this.dirty = true;
         } else if (ctx.cue && action.pointerType !== 'touch'
@@ -121,8 +158,12 @@ export class AimController {
         if (this.mode === 'pulling') {
           if (p && this.anchor) this.power = pullPower(this.anchor, p, this.angle, MAX_PULL);
           if (this.power >= MIN_POWER) {
+            const { max_speed: maxSpeed, max_tip: maxTip } = ctx.limits;
+            const tip = clampTip(this.tip[0], this.tip[1], maxTip);
+            const rounded = tip.map(round6);
             out.push({ type: 'shoot', angle: round6(this.angle),
-              speed: round6(speedFromPower(this.power)), tip: this.tip.map(round6) });
+              speed: Math.min(maxSpeed, round6(speedFromPower(this.power, maxSpeed))),
+              tip: Math.hypot(rounded[0], rounded[1]) <= maxTip ? rounded : tip.map(trunc6) });
           }
           this.reset();
           this.dirty = true;
@@ -135,12 +176,27 @@ export class AimController {
     return out;
   }
 
-  /** The guide for the current aim from `cue`. */
+  /**
+   * The guide for the current aim from `cue`.
+   * @param {any} table
+   * @param {{id: number, x: number, y: number}[]} balls
+   * @param {[number, number]} cue
+   */
   guide(table, balls, cue) {
     return castGuide(table, balls, cue, this.angle);
   }
 }
 
+/** @param {number} v */
 function round6(v) {
   return Math.round(v * 1e6) / 1e6;
+}
+
+/**
+ * Towards zero: rounding a tip clamped onto the edge of the legal disc can carry it just
+ * outside, which the server refuses.
+ * @param {number} v
+ */
+function trunc6(v) {
+  return Math.trunc(v * 1e6) / 1e6;
 }

@@ -2,6 +2,7 @@
  * The display loop (javascript-tetris's `frame()`): `step(dt, now)` on every animation
  * frame, dt clamped to 0.1 s, times in seconds. Hidden tabs get no animation frames, so a
  * timer keeps the stream and the HUD moving there (at least every 250 ms).
+ * @param {(dt: number, now: number) => void} step
  */
 export function startLoop(step) {
   let last = performance.now();

@@ -4,42 +4,75 @@
  * ones are parsed and handed to `onMessage`. See docs/protocol.md.
  */
 
+/** An HTTP API error: the server's message, status and error code. */
+export class ApiError extends Error {
+  /**
+   * @param {string} message
+   * @param {number} status
+   * @param {string | null} code
+   */
+  constructor(message, status, code) {
+    super(message);
+    this.status = status;
+    this.code = code;
+  }
+}
+
+/**
+ * @param {string} method
+ * @param {string} path
+ * @param {object} [body]
+ * @returns {Promise<any>}
+ */
 async function request(method, path, body) {
   const res = await fetch(path, {
     method,
     headers: body ? { 'Content-Type': 'application/json' } : {},
     body: body ? JSON.stringify(body) : undefined,
   });
-  let data = null;
+  let data;
   try { data = await res.json(); } catch { data = null; }
   if (!res.ok) {
     const d = data?.detail;
     const message = (d && typeof d === 'object' && !Array.isArray(d) && d.message)
       || (Array.isArray(d) && d[0]?.msg) || `HTTP ${res.status}`;
-    const err = new Error(message);
-    err.status = res.status;
-    err.code = d?.code ?? null;
-    throw err;
+    throw new ApiError(message, res.status, d?.code ?? null);
   }
   return data;
 }
 
 export const api = {
+  /**
+   * @param {string} game
+   * @param {number} raceTo
+   * @param {number} [shotClock]
+   */
   createRoom: (game, raceTo, shotClock) => request('POST', '/api/rooms',
     { game, race_to: raceTo, ...(shotClock !== undefined ? { shot_clock: shotClock } : {}) }),
   listRooms: () => request('GET', '/api/rooms'),
+  /** @param {string} roomId */
   getRoom: (roomId) => request('GET', `/api/rooms/${encodeURIComponent(roomId)}`),
+  /**
+   * @param {string} roomId
+   * @param {string} name
+   */
   join: (roomId, name) => request('POST', `/api/rooms/${encodeURIComponent(roomId)}/join`,
     { name }),
   finishedMatches: (limit = 10) => request('GET', `/api/matches?status=finished&limit=${limit}`),
+  /** @param {string} matchId */
   getMatch: (matchId) => request('GET', `/api/matches/${encodeURIComponent(matchId)}`),
+  /** The server's limits (as in `welcome`), for forms shown before any room is joined. */
+  limits: () => request('GET', '/api/limits'),
 };
 
 /**
  * Read a newline-delimited JSON response (a shot's replay) and hand each message to
  * `onMessage` as it arrives; resolves when the stream ends (rejects if it is aborted).
+ * @param {Response} response
+ * @param {(msg: any) => void} onMessage
  */
 export async function readNdjson(response, onMessage) {
+  if (!response.body) return;
   const reader = response.body.getReader();
   const decoder = new TextDecoder();
   let buffered = '';
@@ -64,17 +97,21 @@ export class RoomSocket {
   /**
    * @param {string} roomId
    * @param {() => string|null} getToken the seat token (null: spectator), read at each connect
-   * @param {{onMessage, onStatus}} handlers onStatus(status, detail)
+   * @param {object} handlers
+   * @param {(msg: Record<string, any>) => void} handlers.onMessage
+   * @param {(status: string, detail?: string) => void} handlers.onStatus
    */
   constructor(roomId, getToken, { onMessage, onStatus }) {
     this.roomId = roomId;
     this.getToken = getToken;
     this.onMessage = onMessage;
     this.onStatus = onStatus;
+    /** @type {WebSocket | null} */
     this.ws = null;
     this.attempt = 0;
     this.closed = false;
-    this.timer = null;
+    /** @type {ReturnType<typeof setTimeout> | undefined} */
+    this.timer = undefined;
     this.refusals = 0;
   }
 
@@ -114,7 +151,11 @@ export class RoomSocket {
     };
   }
 
-  /** Send a message; returns false when not connected (the caller may retry). */
+  /**
+   * Send a message; returns false when not connected (the caller may retry).
+   * @param {Record<string, any>} msg
+   * @returns {boolean}
+   */
   send(msg) {
     if (!this.ws || this.ws.readyState !== WebSocket.OPEN) return false;
     this.ws.send(JSON.stringify(msg));
@@ -141,14 +182,27 @@ export class RoomSocket {
 // ---- remembered things ----------------------------------------------------------------
 const store = globalThis.localStorage;
 
+/** @typedef {{seat: number, token: string, name: string}} SeatTicket */
+
 export const memory = {
+  /** @returns {string} */
   name: () => store?.getItem('pool.name') ?? '',
+  /** @param {string} n */
   setName: (n) => store?.setItem('pool.name', n),
   muted: () => store?.getItem('pool.muted') === '1',
+  /** @param {boolean} m */
   setMuted: (m) => store?.setItem('pool.muted', m ? '1' : '0'),
-  /** {seat, token, name} for a room, or null. */
+  /**
+   * {seat, token, name} for a room, or null.
+   * @param {string} roomId
+   * @returns {SeatTicket | null}
+   */
   seat: (roomId) => {
     try { return JSON.parse(store?.getItem(`pool.seat.${roomId}`) ?? 'null'); } catch { return null; }
   },
+  /**
+   * @param {string} roomId
+   * @param {SeatTicket} seat
+   */
   setSeat: (roomId, seat) => store?.setItem(`pool.seat.${roomId}`, JSON.stringify(seat)),
 };

@@ -8,7 +8,22 @@
 
 import { CUSHION_WIDTH, RAIL_WIDTH } from './geometry.js';
 import { drawBall } from './sprites.js';
+import { sinkPose } from './playback.js';
 
+/** @typedef {import('./geometry.js').Table} Table */
+/** @typedef {import('./geometry.js').View} View */
+/** @typedef {import('./geometry.js').Vec} Vec */
+/** @typedef {import('./sprites.js').Sprites} Sprites */
+/** @typedef {CanvasRenderingContext2D} Ctx */
+
+/**
+ * @param {Ctx} ctx
+ * @param {number} x
+ * @param {number} y
+ * @param {number} w
+ * @param {number} h
+ * @param {number} r corner radius
+ */
 function roundRect(ctx, x, y, w, h, r) {
   ctx.beginPath();
   ctx.moveTo(x + r, y);
@@ -19,15 +34,24 @@ function roundRect(ctx, x, y, w, h, r) {
   ctx.closePath();
 }
 
-/** Unit direction from the middle of a pocket's mouth towards its hole. */
+/**
+ * Unit direction from the middle of a pocket's mouth towards its hole.
+ * @param {Table['pockets'][number]} p
+ * @returns {Vec}
+ */
 export function pocketOutward(p) {
   if (p.outward) return p.outward;
+  if (!p.jaws) return [0, 0];
   const mx = (p.jaws[0][0] + p.jaws[1][0]) / 2;
   const my = (p.jaws[0][1] + p.jaws[1][1]) / 2;
   const n = Math.hypot(p.center[0] - mx, p.center[1] - my) || 1;
   return [(p.center[0] - mx) / n, (p.center[1] - my) / n];
 }
 
+/**
+ * @param {Ctx} ctx
+ * @param {Vec[]} pts
+ */
 function polygon(ctx, pts) {
   ctx.beginPath();
   pts.forEach(([x, y], i) => (i ? ctx.lineTo(x, y) : ctx.moveTo(x, y)));
@@ -38,9 +62,13 @@ function polygon(ctx, pts) {
  * The back corners of each cushion (where it meets the wooden rail): from each jaw along
  * the direction of that jaw's pocket until the rail line, so the cushion ends are cut like
  * real pocket facings. Returns [[backOfStart, backOfEnd], ...] in table metres.
+ * @param {Table} table
+ * @returns {Vec[][]}
  */
 export function cushionBacks(table) {
+  /** @type {(p: Vec, q: Vec) => boolean} */
   const near = (p, q) => Math.hypot(p[0] - q[0], p[1] - q[1]) < 1e-9;
+  /** @param {Vec} j */
   const pocketAtJaw = (j) => table.pockets.find((p) => p.jaws && p.jaws.some((q) => near(q, j)));
   return table.cushions.map((c) => {
     const [nx, ny] = c.normal;
@@ -55,7 +83,12 @@ export function cushionBacks(table) {
   });
 }
 
-/** Draw the static table into `ctx` (already scaled to CSS pixels). */
+/**
+ * Draw the static table into `ctx` (already scaled to CSS pixels).
+ * @param {Ctx} ctx
+ * @param {Table} table
+ * @param {View} view
+ */
 export function drawTable(ctx, table, view) {
   const s = view.scale;
   const L = table.length;
@@ -102,6 +135,7 @@ export function drawTable(ctx, table, view) {
   // Pocket throats and holes: from the mouth (between the jaws) back into the rail.
   const backs = cushionBacks(table);
   table.pockets.forEach((p) => {
+    if (!p.jaws) return;
     const [[ax, ay], [bx2, by2]] = p.jaws;
     const [ox2, oy2] = pocketOutward(p);
     const depth = CUSHION_WIDTH / Math.max(Math.abs(ox2), Math.abs(oy2));
@@ -156,6 +190,7 @@ export function drawTable(ctx, table, view) {
   // Diamonds (sights) on the rails: every eighth of the length, every quarter of the width.
   const mid = CUSHION_WIDTH + RAIL_WIDTH * 0.5;
   const dsz = Math.max(2, s * 0.012);
+  /** @type {(x: number, y: number) => void} */
   const diamond = (x, y) => {
     const [dx, dy] = view.toScreen(x, y);
     ctx.beginPath();
@@ -196,30 +231,51 @@ export function drawTable(ctx, table, view) {
   }
 }
 
-/** Balls at their (interpolated) positions: Map id -> {x, y, cel, heading}. */
+/**
+ * Balls at their (interpolated) positions: Map id -> {x, y, cel, heading}.
+ * @param {Ctx} ctx
+ * @param {View} view
+ * @param {Sprites} sprites
+ * @param {Map<number, {x: number, y: number, cel?: number, heading?: number}>} balls
+ * @param {number} scaleToCss
+ */
 export function drawBalls(ctx, view, sprites, balls, scaleToCss) {
   const ids = [...balls.keys()].sort((a, b) => a - b);
   for (const id of ids) {
     const b = balls.get(id);
+    if (!b) continue;
     const [x, y] = view.toScreen(b.x, b.y);
     drawBall(ctx, sprites, id, x, y, b.cel ?? 0, view.screenAngle(b.heading ?? 0), scaleToCss);
   }
 }
 
-/** A ball being pocketed: shrinks and darkens into the hole. */
+/**
+ * A ball being pocketed: slides into the hole, shrinking and darkening.
+ * @param {Ctx} ctx
+ * @param {View} view
+ * @param {Sprites} sprites
+ * @param {import('./playback.js').Sinking} sink
+ * @param {number} now
+ * @param {number} scaleToCss
+ */
 export function drawSinking(ctx, view, sprites, sink, now, scaleToCss) {
-  const f = Math.min(1, (now - sink.start) / sink.duration);
-  const x = sink.from[0] + (sink.to[0] - sink.from[0]) * f;
-  const y = sink.from[1] + (sink.to[1] - sink.from[1]) * f;
-  const [sx, sy] = view.toScreen(x, y);
+  const pose = sinkPose(sink, now);
+  const [sx, sy] = view.toScreen(pose.x, pose.y);
   ctx.save();
-  ctx.globalAlpha = 1 - f * 0.8;
+  ctx.globalAlpha = pose.alpha;
   drawBall(ctx, sprites, sink.id, sx, sy, sink.cel, view.screenAngle(sink.heading),
-    scaleToCss * (1 - 0.45 * f));
+    scaleToCss * pose.scale);
   ctx.restore();
 }
 
-/** The guide line, the ghost ball and the object ball's likely path. */
+/**
+ * The guide line, the ghost ball and the object ball's likely path.
+ * @param {Ctx} ctx
+ * @param {View} view
+ * @param {Table} table
+ * @param {Vec} cue
+ * @param {import('./geometry.js').Guide} guide
+ */
 export function drawGuide(ctx, view, table, cue, guide) {
   const s = view.scale;
   const r = table.ball_radius * s;
@@ -240,6 +296,7 @@ export function drawGuide(ctx, view, table, cue, guide) {
     ctx.arc(gx, gy, r, 0, Math.PI * 2);
     ctx.stroke();
   }
+  /** @type {(dir: Vec | null, len: number, color: string) => void} */
   const ray = (dir, len, color) => {
     if (!dir) return;
     const [ex, ey] = view.toScreen(guide.contact[0] + dir[0] * len,
@@ -250,7 +307,7 @@ export function drawGuide(ctx, view, table, cue, guide) {
     ctx.lineTo(ex, ey);
     ctx.stroke();
   };
-  if (guide.kind === 'ball') {
+  if (guide.kind === 'ball' && guide.objectDir) {
     const [hx, hy] = [guide.contact[0] + guide.objectDir[0] * 2 * table.ball_radius,
       guide.contact[1] + guide.objectDir[1] * 2 * table.ball_radius];
     const [ox, oy] = view.toScreen(hx, hy);
@@ -272,6 +329,13 @@ export function drawGuide(ctx, view, table, cue, guide) {
 /**
  * The cue stick behind the cue ball along `angle` (table radians), pulled back by `power`
  * (0..1). `alpha` < 1 for the opponent's relayed aim.
+ * @param {Ctx} ctx
+ * @param {View} view
+ * @param {Table} table
+ * @param {Vec} cue
+ * @param {number} angle
+ * @param {number} power
+ * @param {number} [alpha]
  */
 export function drawCue(ctx, view, table, cue, angle, power, alpha = 1) {
   const s = view.scale;
@@ -289,6 +353,7 @@ export function drawCue(ctx, view, table, cue, angle, power, alpha = 1) {
   const nl = Math.hypot(nx, ny) || 1;
   const w0 = 0.0065 * s;
   const w1 = 0.015 * s;
+  /** @type {(w: number) => Vec} */
   const side = (w) => [(nx / nl) * w, (ny / nl) * w];
   const [a0x, a0y] = side(w0);
   const [a1x, a1y] = side(w1);
@@ -324,7 +389,13 @@ export function drawCue(ctx, view, table, cue, angle, power, alpha = 1) {
   ctx.restore();
 }
 
-/** Ball in hand: the allowed area tinted, the cue ball's wished place outlined. */
+/**
+ * Ball in hand: the allowed area tinted, the cue ball's wished place outlined.
+ * @param {Ctx} ctx
+ * @param {View} view
+ * @param {import('./geometry.js').Area} area
+ * @param {{x: number, y: number, free: boolean, r: number} | null} pending
+ */
 export function drawPlacement(ctx, view, area, pending) {
   const [ax0, ay0] = view.toScreen(area.x0, area.y1);
   const [ax1, ay1] = view.toScreen(area.x1, area.y0);
@@ -349,7 +420,15 @@ export function drawPlacement(ctx, view, area, pending) {
   ctx.restore();
 }
 
-/** Calling the 8: pockets ringed, the called one (or the hovered one) bright. */
+/**
+ * Calling the 8: pockets ringed, the called one (or the hovered one) bright.
+ * @param {Ctx} ctx
+ * @param {View} view
+ * @param {Table} table
+ * @param {number} called pocket index, -1 for none
+ * @param {number} hovered pocket index, -1 for none
+ * @param {number} pulse 0..1
+ */
 export function drawPocketCall(ctx, view, table, called, hovered, pulse) {
   ctx.save();
   table.pockets.forEach((p, i) => {
@@ -364,7 +443,13 @@ export function drawPocketCall(ctx, view, table, called, hovered, pulse) {
   ctx.restore();
 }
 
-/** Power meter next to the cue ball while pulling back. */
+/**
+ * Power meter next to the cue ball while pulling back.
+ * @param {Ctx} ctx
+ * @param {View} view
+ * @param {Vec} cue
+ * @param {number} power 0..1
+ */
 export function drawPowerMeter(ctx, view, cue, power) {
   const [x, y] = view.toScreen(cue[0], cue[1]);
   const h = Math.max(40, view.scale * 0.25);

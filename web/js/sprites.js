@@ -28,8 +28,26 @@ const E2 = [0, Math.cos(TILT), -Math.sin(TILT)]; // decal y (down the sprite)
 const S = [1, 0, 0]; // stripe axis: the band holds both number poles
 const CUE_DOTS = [P, [-P[0], -P[1], -P[2]], S, [-1, 0, 0], E2, [-E2[0], -E2[1], -E2[2]]];
 
+/** @typedef {number[]} Vec3 */
+/** @typedef {HTMLCanvasElement | OffscreenCanvas} AnyCanvas */
+
+/**
+ * Every ball's pre-rendered images at one size (see buildSprites).
+ * @typedef {object} Sprites
+ * @property {number} radius ball radius, device pixels
+ * @property {number} side side of a cel's square
+ * @property {Record<number, AnyCanvas[]>} cels id -> the CELS cels of one turn
+ * @property {AnyCanvas} shade
+ * @property {AnyCanvas} shadow
+ */
+
+/** @type {(a: Vec3, b: Vec3) => number} */
 const dot3 = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 
+/**
+ * @param {string} hex '#rrggbb'
+ * @returns {[number, number, number]}
+ */
 export function hexToRgb(hex) {
   const v = parseInt(hex.slice(1), 16);
   return [(v >> 16) & 255, (v >> 8) & 255, v & 255];
@@ -38,6 +56,11 @@ export function hexToRgb(hex) {
 /**
  * The body point seen at sprite normal n = (u, v, w) after rolling `theta` radians towards
  * +u (rotation about the sprite's v axis).
+ * @param {number} u
+ * @param {number} v
+ * @param {number} w
+ * @param {number} theta
+ * @returns {Vec3}
  */
 export function bodyPoint(u, v, w, theta) {
   const c = Math.cos(theta);
@@ -48,6 +71,9 @@ export function bodyPoint(u, v, w, theta) {
 /**
  * What paints body point b of ball `id`: returns {color: [r, g, b], decal: null | [x, y]}
  * where `decal` are number-disc coordinates in [-1, 1] when b is on a number disc.
+ * @param {number} id
+ * @param {Vec3} b
+ * @returns {{color: number[], decal: [number, number] | null}}
  */
 export function surfaceAt(id, b) {
   if (id === CUE) {
@@ -68,6 +94,24 @@ export function surfaceAt(id, b) {
   return { color: hexToRgb(ballColor(id)), decal: null };
 }
 
+/**
+ * The 2D context of a canvas; every browser the game supports has one, so its absence is
+ * an error rather than a case to draw around.
+ * @param {HTMLCanvasElement | OffscreenCanvas} canvas
+ * @param {CanvasRenderingContext2DSettings} [options]
+ * @returns {CanvasRenderingContext2D}
+ */
+export function context2d(canvas, options) {
+  const ctx = canvas.getContext('2d', options);
+  if (!ctx) throw new Error('this browser cannot draw on a canvas');
+  return /** @type {CanvasRenderingContext2D} */ (ctx);
+}
+
+/**
+ * @param {number} w
+ * @param {number} h
+ * @returns {AnyCanvas}
+ */
 function makeCanvas(w, h) {
   if (typeof OffscreenCanvas !== 'undefined') return new OffscreenCanvas(w, h);
   const c = document.createElement('canvas');
@@ -76,11 +120,16 @@ function makeCanvas(w, h) {
   return c;
 }
 
-/** Coverage maps (0..1) of each number 1..15 painted in a small square. */
+/**
+ * Coverage maps (0..1) of each number 1..15 painted in a small square.
+ * @param {number} size
+ * @returns {Record<number, Float32Array>}
+ */
 function numberDecals(size) {
+  /** @type {Record<number, Float32Array>} */
   const decals = {};
   const c = makeCanvas(size, size);
-  const ctx = c.getContext('2d', { willReadFrequently: true });
+  const ctx = context2d(c, { willReadFrequently: true });
   for (let n = 1; n <= 15; n++) {
     ctx.clearRect(0, 0, size, size);
     ctx.fillStyle = '#000';
@@ -98,6 +147,12 @@ function numberDecals(size) {
   return decals;
 }
 
+/**
+ * @param {Float32Array} cov
+ * @param {number} size
+ * @param {number} x
+ * @param {number} y
+ */
 function sampleDecal(cov, size, x, y) {
   const px = Math.floor(((x + 1) / 2) * size);
   const py = Math.floor(((y + 1) / 2) * size);
@@ -105,10 +160,14 @@ function sampleDecal(cov, size, x, y) {
   return cov[py * size + px];
 }
 
-/** A round mask of radius r (device pixels) in a square of side `side`. */
+/**
+ * A round mask of radius r (device pixels) in a square of side `side`.
+ * @param {number} side
+ * @param {number} r
+ */
 function roundMask(side, r) {
   const m = makeCanvas(side, side);
-  const ctx = m.getContext('2d');
+  const ctx = context2d(m);
   ctx.fillStyle = '#fff';
   ctx.beginPath();
   ctx.arc(side / 2, side / 2, r, 0, Math.PI * 2);
@@ -116,13 +175,22 @@ function roundMask(side, r) {
   return m;
 }
 
-/** The N cels of one ball: canvases of side `side` with the ball of radius r centred. */
+/**
+ * The N cels of one ball: canvases of side `side` with the ball of radius r centred.
+ * @param {number} id
+ * @param {number} side
+ * @param {number} r
+ * @param {Record<number, Float32Array>} decals
+ * @param {number} decalSize
+ * @param {AnyCanvas} mask
+ */
 function ballCels(id, side, r, decals, decalSize, mask) {
+  /** @type {AnyCanvas[]} */
   const cels = [];
   for (let k = 0; k < CELS; k++) {
     const theta = (2 * Math.PI * k) / CELS;
     const surface = makeCanvas(side, side);
-    const ctx = surface.getContext('2d');
+    const ctx = context2d(surface);
     const img = ctx.createImageData(side, side);
     const data = img.data;
     for (let py = 0; py < side; py++) {
@@ -155,10 +223,15 @@ function ballCels(id, side, r, decals, decalSize, mask) {
   return cels;
 }
 
-/** Light and shade over the disc, fixed in screen space (light from the top left). */
+/**
+ * Light and shade over the disc, fixed in screen space (light from the top left).
+ * @param {number} side
+ * @param {number} r
+ * @param {AnyCanvas} mask
+ */
 function shadeSprite(side, r, mask) {
   const c = makeCanvas(side, side);
-  const ctx = c.getContext('2d');
+  const ctx = context2d(c);
   const m = side / 2;
   const limb = ctx.createRadialGradient(m - r * 0.3, m - r * 0.35, r * 0.1, m, m, r * 1.02);
   limb.addColorStop(0, 'rgba(255,255,255,0.10)');
@@ -185,9 +258,13 @@ function shadeSprite(side, r, mask) {
   return c;
 }
 
+/**
+ * @param {number} side
+ * @param {number} r
+ */
 function shadowSprite(side, r) {
   const c = makeCanvas(side, side);
-  const ctx = c.getContext('2d');
+  const ctx = context2d(c);
   const m = side / 2;
   const g = ctx.createRadialGradient(m, m, r * 0.2, m, m, r * 1.25);
   g.addColorStop(0, 'rgba(0,0,0,0.55)');
@@ -200,7 +277,9 @@ function shadowSprite(side, r) {
 
 /**
  * Build every ball's cels for a ball radius of `radiusPx` device pixels.
- * Returns {radius, side, cels: {id: canvas[]}, shade, shadow}.
+ * @param {number} radiusPx
+ * @param {number[]} [ids]
+ * @returns {Sprites}
  */
 export function buildSprites(radiusPx, ids = [...Array(16).keys()]) {
   const r = Math.max(4, radiusPx);
@@ -208,6 +287,7 @@ export function buildSprites(radiusPx, ids = [...Array(16).keys()]) {
   const mask = roundMask(side, r);
   const decalSize = 48;
   const decals = numberDecals(decalSize);
+  /** @type {Record<number, AnyCanvas[]>} */
   const cels = {};
   for (const id of ids) cels[id] = ballCels(id, side, r, decals, decalSize, mask);
   return { radius: r, side, cels, shade: shadeSprite(side, r, mask),
@@ -217,6 +297,14 @@ export function buildSprites(radiusPx, ids = [...Array(16).keys()]) {
 /**
  * Draw ball `id` centred at (x, y) device pixels: shadow, the rolled cel turned to the
  * travel direction `heading` (screen radians), then the fixed shading.
+ * @param {CanvasRenderingContext2D} ctx
+ * @param {Sprites} sprites
+ * @param {number} id
+ * @param {number} x
+ * @param {number} y
+ * @param {number} cel
+ * @param {number} heading
+ * @param {number} [scale]
  */
 export function drawBall(ctx, sprites, id, x, y, cel, heading, scale = 1) {
   const cels = sprites.cels[id];

@@ -7,37 +7,83 @@
  */
 
 import { groupBalls } from './balls.js';
+import { DEFAULT_LIMITS, DEFAULT_STREAM, readLimits, readStream } from './limits.js';
 
 const MM = 1000;
 
-export function initialState({ roomId = null, name = '' } = {}) {
+/** @typedef {{id: number, x: number, y: number, cel: number}} Ball metres */
+
+/**
+ * The client's model of one room (or of one replayed shot). Fields the server sends as
+ * whole objects (`room`, `table`, `match`, `clock`) are kept as they came.
+ * @typedef {object} RoomState
+ * @property {string | null} roomId
+ * @property {string} name
+ * @property {string} connection connecting | open | reconnecting | closed
+ * @property {{seat: number | null, role: string, name?: string}} me
+ * @property {Readonly<import('./limits.js').StreamPacing>} stream the server's tick rate and
+ *   frame pacing (replaced by `welcome`'s)
+ * @property {Readonly<import('./limits.js').Limits>} limits what the server accepts (replaced
+ *   by `welcome`'s `limits`)
+ * @property {number | null} seq last room seq seen
+ * @property {number} lastSyncAt
+ * @property {any} room
+ * @property {string} phase waiting | aiming | rolling | over
+ * @property {any} table
+ * @property {Ball[]} balls at rest
+ * @property {number | null} shot id of the shot being streamed
+ * @property {number} lastFrameTick
+ * @property {any} clock {seat, remaining, limit, at}: `at` = local time the message came
+ * @property {any[]} grace
+ * @property {any} match
+ * @property {string} outcome last outcome in words
+ * @property {any} lastResult
+ * @property {{seat: number | null, name: string, text: string}[]} chat
+ * @property {{seat: number, angle: number, power: number, tip: number[], at: number} | null} aim
+ *   relayed aim of the player at the table
+ * @property {{code: string, message: string, ref: string | null, at: number} | null} error
+ */
+
+/**
+ * @param {object} [opts]
+ * @param {string | null} [opts.roomId]
+ * @param {string} [opts.name]
+ * @param {Readonly<import('./limits.js').StreamPacing>} [opts.stream] the stream's pacing when
+ *   known before any `welcome` (a stored match's `stream`)
+ * @returns {RoomState}
+ */
+export function initialState({ roomId = null, name = '', stream = DEFAULT_STREAM } = {}) {
   return {
     roomId,
     name,
-    connection: 'connecting', // connecting | open | reconnecting | closed
+    connection: 'connecting',
     me: { seat: null, role: 'spectator' },
-    tickHz: 120,
-    frameEvery: 6,
-    seq: null, // last room seq seen
+    stream,
+    limits: DEFAULT_LIMITS,
+    seq: null,
     lastSyncAt: -Infinity,
     room: null,
     phase: 'waiting',
     table: null,
-    balls: [], // at rest: [{id, x, y, cel}] metres
-    shot: null, // id of the shot being streamed
+    balls: [],
+    shot: null,
     lastFrameTick: -1,
-    clock: null, // {seat, remaining, limit, at}: `at` = local time the message came
+    clock: null,
     grace: [],
     match: null,
-    outcome: '', // last outcome in words
+    outcome: '',
     lastResult: null,
     chat: [],
-    aim: null, // relayed aim of the player at the table {seat, angle, power, tip, at}
-    error: null, // {code, message, at}
+    aim: null,
+    error: null,
   };
 }
 
-/** Balls of a message in the wire format [id, x_mm, y_mm, cel] -> {id, x, y, cel} metres. */
+/**
+ * Balls of a message in the wire format [id, x_mm, y_mm, cel] -> {id, x, y, cel} metres.
+ * @param {number[][] | null | undefined} list
+ * @returns {Ball[]}
+ */
 export function decodeBalls(list) {
   return (list ?? []).map(([id, x, y, cel]) => ({ id, x: x / MM, y: y / MM, cel }));
 }
@@ -48,6 +94,9 @@ const SYNC_COOLDOWN = 1.0; // seconds between two sync requests
 /**
  * Check the room sequence: returns [newSeq, gap]. `state` resets the counter (it is the
  * whole truth); a jump of more than one elsewhere is a gap.
+ * @param {number | null} lastSeq
+ * @param {Record<string, any>} msg
+ * @returns {[number | null, boolean]}
  */
 export function checkSeq(lastSeq, msg) {
   if (!SEQUENCED.has(msg.type) || typeof msg.seq !== 'number') return [lastSeq, false];
@@ -56,7 +105,20 @@ export function checkSeq(lastSeq, msg) {
   return [msg.seq, msg.seq > lastSeq + 1];
 }
 
+/**
+ * @typedef {{kind: string} & Record<string, any>} Effect what the shell must do
+ *   (`sync`, `rest`, `shot`, `frame`, `sound`, `result`; see reduce)
+ */
+
+/**
+ * One server message into the state: the new state and the effects to carry out.
+ * @param {RoomState} state
+ * @param {any} msg
+ * @param {number} [now] local time, seconds
+ * @returns {{state: RoomState, effects: Effect[]}}
+ */
 export function reduce(state, msg, now = 0) {
+  /** @type {Effect[]} */
   const effects = [];
   if (!msg || typeof msg !== 'object') return { state, effects };
   const [seq, gap] = checkSeq(state.seq, msg);
@@ -69,8 +131,8 @@ export function reduce(state, msg, now = 0) {
   switch (msg.type) {
     case 'welcome':
       s.me = { seat: msg.seat ?? null, role: msg.role ?? 'spectator', name: msg.name };
-      s.tickHz = msg.tick_hz ?? s.tickHz;
-      s.frameEvery = msg.frame_every ?? s.frameEvery;
+      s.stream = readStream(msg, s.stream);
+      s.limits = readLimits(msg.limits, s.limits);
       s.seq = msg.seq ?? s.seq;
       s.connection = 'open';
       break;
@@ -88,7 +150,8 @@ export function reduce(state, msg, now = 0) {
         if (s.shot !== msg.shot.id) {
           s.shot = msg.shot.id;
           s.lastFrameTick = -1;
-          effects.push({ kind: 'shot', shot: msg.shot.id, tick: msg.shot.tick, balls: s.balls });
+          effects.push({ kind: 'shot', shot: msg.shot.id, tick: msg.shot.tick,
+            t0: msg.shot.tick / s.stream.tick_hz, balls: s.balls });
         }
       } else {
         s.shot = null;
@@ -103,21 +166,21 @@ export function reduce(state, msg, now = 0) {
         s.lastFrameTick = -1;
         s.phase = 'rolling';
         s.aim = null;
-        effects.push({ kind: 'shot', shot: msg.shot, tick: 0, balls: null });
+        effects.push({ kind: 'shot', shot: msg.shot, tick: 0, t0: 0, balls: null });
       }
       if (msg.tick <= s.lastFrameTick) break; // stale
       s.lastFrameTick = msg.tick;
       s.clock = null;
       const balls = decodeBalls(msg.b);
-      effects.push({ kind: 'frame', t: msg.tick / s.tickHz, balls, last: !!msg.last });
+      effects.push({ kind: 'frame', t: msg.tick / s.stream.tick_hz, balls, last: !!msg.last });
       if (msg.last) s.balls = balls;
       // The next frames, sent early in the same message (fewer messages for the server):
       // played at their own ticks like any other frame.
       for (const early of msg.ahead ?? []) {
         if (early.tick <= s.lastFrameTick) continue;
         s.lastFrameTick = early.tick;
-        effects.push({ kind: 'frame', t: early.tick / s.tickHz, balls: decodeBalls(early.b),
-          last: false, ahead: true });
+        effects.push({ kind: 'frame', t: early.tick / s.stream.tick_hz,
+          balls: decodeBalls(early.b), last: false, ahead: true });
       }
       break;
     }
@@ -158,45 +221,77 @@ export function reduce(state, msg, now = 0) {
   return { state: s, effects };
 }
 
-/** Local connection status changes (from the socket wrapper). */
+/**
+ * Local connection status changes (from the socket wrapper).
+ * @param {RoomState} state
+ * @param {string} connection
+ * @returns {RoomState}
+ */
 export function setConnection(state, connection) {
   return { ...state, connection };
 }
 
 // ---- derived views used by the HUD and the input ------------------------------------
 
+/**
+ * @param {RoomState} state
+ * @param {number} seat
+ * @returns {string | null}
+ */
 export function playerName(state, seat) {
-  const p = state.room?.players?.find((q) => q && q.seat === seat);
+  const p = state.room?.players?.find((/** @type {any} */ q) => q && q.seat === seat);
   return p?.name ?? null;
 }
 
-/** Whose turn it is (seat) or null when nobody may act. */
+/**
+ * Whose turn it is (seat) or null when nobody may act.
+ * @param {RoomState} state
+ * @returns {number | null}
+ */
 export function turnSeat(state) {
   if (state.phase !== 'aiming' || !state.match) return null;
   if (state.match.decision) return state.match.decision.seat;
   return state.match.turn ?? null;
 }
 
-/** True when this client may act now (aim, shoot, place, call). */
+/**
+ * True when this client may act now (aim, shoot, place, call).
+ * @param {RoomState} state
+ */
 export function isMyTurn(state) {
   return state.me.role === 'player' && state.me.seat !== null
     && turnSeat(state) === state.me.seat && !state.match?.over;
 }
 
-/** Seconds left on the shot clock at local time `now` (null when no clock runs). */
+/**
+ * Seconds left on the shot clock at local time `now` (null when no clock runs).
+ * @param {RoomState} state
+ * @param {number} now
+ * @returns {number | null}
+ */
 export function clockRemaining(state, now) {
   if (!state.clock) return null;
   return Math.max(0, state.clock.remaining - (now - state.clock.at));
 }
 
-/** The group ("solids" | "stripes") of a seat, or null while the table is open. */
+/**
+ * The group ("solids" | "stripes") of a seat, or null while the table is open.
+ * @param {RoomState} state
+ * @param {number} seat
+ * @returns {string | null}
+ */
 export function groupOf(state, seat) {
   const g = state.match?.groups;
   if (!g) return null;
   return g[seat] ?? g[String(seat)] ?? null;
 }
 
-/** Ball ids still on the table for a seat's group. */
+/**
+ * Ball ids still on the table for a seat's group.
+ * @param {RoomState} state
+ * @param {number} seat
+ * @returns {number[]}
+ */
 export function ballsLeft(state, seat) {
   const group = groupOf(state, seat);
   if (!group) return [];
@@ -204,7 +299,11 @@ export function ballsLeft(state, seat) {
   return groupBalls(group).filter((id) => onTable.has(id));
 }
 
-/** Object balls no longer on the table (pocketed), in number order. */
+/**
+ * Object balls no longer on the table (pocketed), in number order.
+ * @param {RoomState} state
+ * @returns {number[]}
+ */
 export function pocketedBalls(state) {
   if (!state.match || !state.table) return [];
   const onTable = new Set(state.balls.map((b) => b.id));
@@ -214,7 +313,10 @@ export function pocketedBalls(state) {
   return all.filter((id) => !onTable.has(id));
 }
 
-/** The score line "Ana 1 – 0 Ben (race to 3)". */
+/**
+ * The score line "Ana 1 – 0 Ben (race to 3)".
+ * @param {RoomState} state
+ */
 export function scoreText(state) {
   const m = state.match;
   if (!m || !m.score) return '';
@@ -224,7 +326,10 @@ export function scoreText(state) {
   return `${a} ${m.score[0]} – ${m.score[1]} ${b} (race to ${m.race_to ?? 1})`;
 }
 
-/** The match winner's name when the match is over, else null. */
+/**
+ * The match winner's name when the match is over, else null.
+ * @param {RoomState} state
+ */
 export function winnerName(state) {
   const m = state.match;
   if (!m) return null;

@@ -5,19 +5,27 @@
  */
 
 import { makeView } from './geometry.js';
-import { buildSprites } from './sprites.js';
+import { buildSprites, context2d } from './sprites.js';
 import { drawTable } from './render.js';
 
 export class TableCanvas {
+  /**
+   * @param {HTMLCanvasElement} canvas
+   * @param {HTMLElement} wrap the element whose size the canvas fills
+   */
   constructor(canvas, wrap) {
     this.canvas = canvas;
     this.wrap = wrap;
-    this.ctx = canvas.getContext('2d');
+    this.ctx = context2d(canvas);
+    /** @type {import('./geometry.js').View | null} */
     this.view = null;
     this.dpr = 1;
+    /** @type {import('./sprites.js').Sprites | null} the ball sprites at the current size */
     this.sprites = null;
+    /** @type {HTMLCanvasElement | null} the cloth and rails, drawn once per size */
     this.layer = null;
     this.key = '';
+    /** @type {import('./geometry.js').Table | null} */
     this.table = null;
     new ResizeObserver(() => this.invalidate()).observe(wrap);
     matchMedia(`(resolution: ${window.devicePixelRatio}dppx)`)
@@ -26,7 +34,11 @@ export class TableCanvas {
 
   invalidate() { this.key = ''; }
 
-  /** Fit `table` to the wrap; true when there is something to draw on. */
+  /**
+   * Fit `table` to the wrap; true when there is something to draw on.
+   * @param {import('./geometry.js').Table | null | undefined} table
+   * @returns {this is {view: import('./geometry.js').View}}
+   */
   layout(table) {
     if (!table) return false;
     if (table !== this.table) { this.table = table; this.key = ''; }
@@ -42,7 +54,7 @@ export class TableCanvas {
       this.layer = document.createElement('canvas');
       this.layer.width = this.canvas.width;
       this.layer.height = this.canvas.height;
-      const tctx = this.layer.getContext('2d');
+      const tctx = context2d(this.layer);
       tctx.setTransform(this.dpr, 0, 0, this.dpr, 0, 0);
       drawTable(tctx, table, this.view);
       const rPx = table.ball_radius * this.view.scale * this.dpr;
@@ -57,7 +69,7 @@ export class TableCanvas {
   begin() {
     const { ctx } = this;
     ctx.setTransform(1, 0, 0, 1, 0, 0);
-    ctx.drawImage(this.layer, 0, 0);
+    if (this.layer) ctx.drawImage(this.layer, 0, 0);
     ctx.setTransform(this.dpr, 0, 0, this.dpr, 0, 0);
     return ctx;
   }

@@ -10,17 +10,65 @@ import {
   scoreText, winnerName,
 } from './state.js';
 
-export const $ = (id) => document.getElementById(id);
+/**
+ * The element with this id; index.html has every id the screens use, so a missing one is
+ * a programming error and fails loudly here rather than later on `null`.
+ * @param {string} id
+ * @returns {HTMLElement}
+ */
+export const $ = (id) => {
+  const el = document.getElementById(id);
+  if (!el) throw new Error(`index.html has no #${id}`);
+  return el;
+};
 
+/**
+ * @param {string} id
+ * @returns {HTMLInputElement}
+ */
+export const $input = (id) => /** @type {HTMLInputElement} */ ($(id));
+
+/**
+ * @param {string} id
+ * @returns {HTMLSelectElement}
+ */
+export const $select = (id) => /** @type {HTMLSelectElement} */ ($(id));
+
+/**
+ * Text fields whose length the server limits say which limit in `data-limit` (e.g.
+ * `data-limit="max_name"`): set their `maxlength` from `limits`.
+ * @param {Readonly<import('./limits.js').Limits>} limits
+ * @param {ParentNode} [root]
+ */
+export function applyInputLimits(limits, root = document) {
+  for (const el of root.querySelectorAll('input[data-limit]')) {
+    const input = /** @type {HTMLInputElement} */ (el);
+    const key = /** @type {keyof import('./limits.js').Limits} */ (input.dataset.limit);
+    const n = limits[key];
+    if (Number.isInteger(n) && n > 0 && input.maxLength !== n) input.maxLength = n;
+  }
+}
+
+/**
+ * @param {Element | null} el
+ * @param {string} text
+ */
 export function setText(el, text) {
   if (el && el.textContent !== text) el.textContent = text;
 }
 
+/**
+ * @param {HTMLElement | null} el
+ * @param {boolean} hidden
+ */
 function setHidden(el, hidden) {
   if (el && el.hidden !== hidden) el.hidden = hidden;
 }
 
-/** A small ball chip for the HUD (colour, stripe, number). */
+/**
+ * A small ball chip for the HUD (colour, stripe, number).
+ * @param {number} id
+ */
 export function miniBall(id) {
   const el = document.createElement('span');
   el.className = 'mini';
@@ -34,23 +82,36 @@ export function miniBall(id) {
   return el;
 }
 
+/**
+ * @param {HTMLElement | null} el
+ * @param {number[]} ids
+ */
 function setBalls(el, ids) {
+  if (!el) return;
   const key = ids.join(',');
   if (el.dataset.key === key) return;
   el.dataset.key = key;
   el.replaceChildren(...ids.map(miniBall));
 }
 
+/** @type {Record<string, string>} */
 const GAME_NAMES = { eight_ball: '8-ball', nine_ball: '9-ball', practice: 'Practice' };
 
-/** Fill the lobby's room list. */
+/**
+ * Fill the lobby's room list.
+ * @param {HTMLElement} list
+ * @param {any[]} rooms `GET /api/rooms`'s rooms
+ * @param {{onJoin: (roomId: string) => void, onWatch: (roomId: string) => void}} actions
+ */
 export function renderRooms(list, rooms, { onJoin, onWatch }) {
   const items = rooms.map((r) => {
     const li = document.createElement('li');
     li.dataset.room = r.room_id;
     const what = document.createElement('div');
     what.className = 'what';
-    const players = (r.players ?? []).map((p) => p ?? 'free seat').join(' vs ');
+    /** @type {(string | null)[]} */
+    const seats = r.players ?? [];
+    const players = seats.map((p) => p ?? 'free seat').join(' vs ');
     const title = document.createElement('div');
     title.textContent = `${GAME_NAMES[r.game] ?? r.game}`
       + (r.game !== 'practice' ? ` · race to ${r.race_to}` : '');
@@ -62,7 +123,7 @@ export function renderRooms(list, rooms, { onJoin, onWatch }) {
     tag.className = `tag ${r.status}`;
     tag.textContent = r.status;
     li.append(what, tag);
-    if ((r.players ?? []).some((p) => p === null)) {
+    if (seats.some((p) => p === null)) {
       const join = document.createElement('button');
       join.textContent = 'Join';
       join.className = 'primary';
@@ -80,7 +141,12 @@ export function renderRooms(list, rooms, { onJoin, onWatch }) {
   list.replaceChildren(...items);
 }
 
-/** A sound on/off button for `audio`; `remember(muted)` keeps the choice. */
+/**
+ * A sound on/off button for `audio`; `remember(muted)` keeps the choice.
+ * @param {HTMLElement} button
+ * @param {import('./audio.js').TableAudio} audio
+ * @param {(muted: boolean) => void} remember
+ */
 export function bindMute(button, audio, remember) {
   const show = () => {
     button.textContent = audio.muted ? 'Sound off' : 'Sound on';
@@ -95,14 +161,21 @@ export function bindMute(button, audio, remember) {
   });
 }
 
-/** "Ana 2–1 Ben" style summary of a stored match. */
+/**
+ * "Ana 2–1 Ben" style summary of a stored match.
+ * @param {{players?: string[], score?: number[]}} m
+ */
 export function matchLine(m) {
   const [a, b] = m.players ?? [];
   const [sa, sb] = m.score ?? [0, 0];
   return `${a ?? '?'} ${sa}–${sb} ${b ?? '?'}`;
 }
 
-/** Fill the lobby's list of finished matches, each with a link to watch it again. */
+/**
+ * Fill the lobby's list of finished matches, each with a link to watch it again.
+ * @param {HTMLElement} list
+ * @param {any[]} matches `GET /api/matches`'s matches
+ */
 export function renderHistory(list, matches) {
   const items = matches.map((m) => {
     const li = document.createElement('li');
@@ -129,14 +202,18 @@ export function renderHistory(list, matches) {
   list.replaceChildren(...items);
 }
 
-/** Update the HUD from the state (called every frame; cheap when nothing changed). */
+/**
+ * Update the HUD from the state (called every frame; cheap when nothing changed).
+ * @param {import('./state.js').RoomState} state
+ * @param {number} now
+ */
 export function renderHud(state, now) {
   const m = state.match;
   const mySeat = state.me.role === 'player' ? state.me.seat : null;
   const turn = turnSeat(state);
   for (const seat of [0, 1]) {
     const el = $(`player-${seat}`);
-    const p = state.room?.players?.find((q) => q && q.seat === seat);
+    const p = state.room?.players?.find((/** @type {any} */ q) => q && q.seat === seat);
     const exists = seat < (state.room?.seats ?? 2);
     setHidden(el, !exists);
     const name = p?.name ?? (exists ? 'waiting for a player…' : '');
@@ -181,7 +258,7 @@ export function renderHud(state, now) {
   const conn = $('connection');
   setText(conn, state.connection);
   conn.className = `conn ${state.connection}`;
-  setText($('role'), state.me.role === 'player' ? `seat ${state.me.seat + 1}` : 'spectator');
+  setText($('role'), state.me.role === 'player' ? `seat ${(state.me.seat ?? 0) + 1}` : 'spectator');
 
   const isPlayer = state.me.role === 'player';
   const practice = m?.kind === 'practice' || state.room?.game === 'practice';
@@ -200,7 +277,11 @@ export function renderHud(state, now) {
   setHidden($('toast'), !error);
 }
 
-/** The decision buttons (e.g. 9-ball push-out answer), shown to the seat that decides. */
+/**
+ * The decision buttons (e.g. 9-ball push-out answer), shown to the seat that decides.
+ * @param {import('./state.js').RoomState} state
+ * @param {(option: string) => void} onDecide
+ */
 export function renderDecision(state, onDecide) {
   const el = $('decision');
   const d = state.match?.decision;
@@ -210,7 +291,7 @@ export function renderDecision(state, onDecide) {
   if (el.dataset.key === key) return;
   el.dataset.key = key;
   if (!mine) { el.replaceChildren(); return; }
-  el.replaceChildren(...d.options.map((opt) => {
+  el.replaceChildren(...d.options.map((/** @type {string} */ opt) => {
     const b = document.createElement('button');
     b.textContent = opt.replace(/_/g, ' ');
     b.addEventListener('click', () => onDecide(opt));
@@ -218,6 +299,7 @@ export function renderDecision(state, onDecide) {
   }));
 }
 
+/** @param {import('./state.js').RoomState} state */
 export function renderChat(state) {
   const log = $('chat-log');
   if (log.dataset.count === String(state.chat.length)) return;

@@ -5,6 +5,7 @@ const a = 0.114 / Math.SQRT2;
 const L = 2.54;
 const W = 1.27;
 const s = 0.127 / 2;
+/** @type {import('../js/geometry.js').Table} */
 export const TABLE = {
   length: L, width: W, ball_radius: 0.028575, head_string: L / 4,
   head_spot: [L / 4, W / 2], foot_spot: [3 * L / 4, W / 2],

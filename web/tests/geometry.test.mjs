@@ -2,7 +2,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
   makeView, castGuide, rayCircle, rayCushion, placementArea, placeCue, pocketAt, pullPower,
-  speedFromPower, clampTip, MAX_SPEED,
+  speedFromPower, clampTip, MIN_SPEED,
 } from '../js/geometry.js';
 
 import { TABLE } from './fixtures.mjs';
@@ -10,6 +10,7 @@ import { TABLE } from './fixtures.mjs';
 const R = TABLE.ball_radius;
 const L = TABLE.length;
 const W = TABLE.width;
+/** @type {(x: number, y: number, eps?: number) => void} */
 const close = (x, y, eps = 1e-9) => assert.ok(Math.abs(x - y) <= eps, `${x} != ${y}`);
 
 test('the view maps table metres to pixels and back, y up on the table, down on screen', () => {
@@ -39,6 +40,7 @@ test('a straight shot at a ball: ghost ball two radii short, object ball straigh
   assert.equal(g.hitId, 5);
   close(g.contact[0], 1.5 - 2 * R, 1e-12);
   close(g.contact[1], 0.6, 1e-12);
+  assert.ok(g.objectDir);
   close(g.objectDir[0], 1, 1e-12);
   assert.equal(g.cueDir, null, 'a full hit stops the cue ball dead (stun)');
 });
@@ -47,6 +49,7 @@ test('a cut: object ball along the line of centres, cue ball along the tangent (
   const ball = { id: 3, x: 1.5, y: 0.6 + R }; // half-ball hit from the left
   const g = castGuide(TABLE, [ball], [0.5, 0.6], 0);
   assert.equal(g.kind, 'ball');
+  assert.ok(g.objectDir && g.cueDir);
   const dx = ball.x - g.contact[0];
   const dy = ball.y - g.contact[1];
   close(Math.hypot(dx, dy), 2 * R, 1e-12);
@@ -65,6 +68,7 @@ test('towards a cushion: the ghost ball touches it and the cue ball mirrors', ()
   const angle = Math.PI / 4;
   const g = castGuide(TABLE, [], [0.5, 0.3], angle);
   assert.equal(g.kind, 'cushion');
+  assert.ok(g.cueDir);
   close(g.contact[1], W - R, 1e-12); // top cushion, one radius short
   close(g.cueDir[0], Math.cos(angle), 1e-12);
   close(g.cueDir[1], -Math.sin(angle), 1e-12);
@@ -85,8 +89,10 @@ test('straight into a corner pocket: no cushion, the guide runs past the mouth',
 test('ball in hand: the kitchen or the whole bed, and overlap is reported', () => {
   assert.equal(placementArea(TABLE, null), null);
   const kitchen = placementArea(TABLE, 'behind_head_string');
+  assert.ok(kitchen);
   close(kitchen.x1, L / 4);
   const anywhere = placementArea(TABLE, 'anywhere');
+  assert.ok(anywhere);
   close(anywhere.x1, L - R);
   const p = placeCue(TABLE, kitchen, [], 2.0, 5);
   close(p.x, L / 4);
@@ -108,20 +114,33 @@ test('pulling back sets power; pushing forward does not', () => {
   assert.equal(pullPower([1, 0.5], [0, 0.5], 0, 0.4), 1);
 });
 
-test('power maps into the legal speed range, monotonically', () => {
+test("power maps into the server's speed range, monotonically", () => {
   let prev = 0;
   for (let p = 0; p <= 1.0001; p += 0.05) {
-    const v = speedFromPower(p);
+    const v = speedFromPower(p, 12);
     assert.ok(v > prev && v <= 12);
     prev = v;
   }
-  close(speedFromPower(1), MAX_SPEED);
+  close(speedFromPower(0, 12), MIN_SPEED);
+  close(speedFromPower(1, 12), 12);
+  close(speedFromPower(2, 12), 12, 0); // power is clamped, so is the speed
 });
 
-test('the tip stays inside the legal disc', () => {
-  assert.deepEqual(clampTip(0.1, 0.2), [0.1, 0.2]);
-  const [x, y] = clampTip(0.6, 0.8);
+test("the speed scale follows the server's max_speed", () => {
+  close(speedFromPower(1, 8), 8);
+  close(speedFromPower(1, 15), 15);
+  // Same curve, stretched: half power is the same fraction of the range.
+  const frac = (/** @type {number} */ max) => (speedFromPower(0.5, max) - MIN_SPEED) / (max - MIN_SPEED);
+  close(frac(8), frac(15), 1e-12);
+});
+
+test('the tip stays inside the legal disc of the given radius', () => {
+  assert.deepEqual(clampTip(0.1, 0.2, 0.5), [0.1, 0.2]);
+  const [x, y] = clampTip(0.6, 0.8, 0.5);
   close(Math.hypot(x, y), 0.5, 1e-12);
+  const [x2, y2] = clampTip(0.6, 0.8, 0.3);
+  close(Math.hypot(x2, y2), 0.3, 1e-12);
+  close(x2 / y2, 0.75, 1e-12); // the direction is kept
 });
 
 test('a portrait canvas stands the table on end, head at the top, and maps back exactly', () => {

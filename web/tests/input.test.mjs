@@ -2,11 +2,16 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { AimController, MAX_PULL } from '../js/input.js';
 import { speedFromPower } from '../js/geometry.js';
+import { DEFAULT_LIMITS, readLimits } from '../js/limits.js';
 import { TABLE } from './fixtures.mjs';
 
+/**
+ * @param {Partial<import('../js/input.js').Situation>} [extra]
+ * @returns {import('../js/input.js').Situation}
+ */
 const ctx = (extra = {}) => ({ table: TABLE, balls: [{ id: 0, x: 0.6, y: 0.6 },
   { id: 1, x: 1.9, y: 0.6 }], cue: [0.6, 0.6], myTurn: true, ballInHand: null,
-  requiresCall: false, ...extra });
+  requiresCall: false, limits: DEFAULT_LIMITS, ...extra });
 
 test('hover aims at the pointer; press, pull back and release shoots', () => {
   const a = new AimController();
@@ -23,7 +28,7 @@ test('hover aims at the pointer; press, pull back and release shoots', () => {
   assert.equal(out.length, 1);
   assert.equal(out[0].type, 'shoot');
   assert.ok(Math.abs(out[0].angle - angle) < 1e-5);
-  assert.ok(Math.abs(out[0].speed - speedFromPower(0.5)) < 1e-5);
+  assert.ok(Math.abs(out[0].speed - speedFromPower(0.5, DEFAULT_LIMITS.max_speed)) < 1e-5);
   assert.deepEqual(out[0].tip, [0, 0]);
   assert.equal(a.mode, 'idle');
 });
@@ -69,4 +74,39 @@ test('the spin tip goes out with the shot', () => {
   a.handle({ type: 'down', x: 1.6, y: 0.6 }, ctx());
   const out = a.handle({ type: 'up', x: 1.2, y: 0.6 }, ctx());
   assert.deepEqual(out[0].tip, [0.1, -0.2]);
+});
+
+/**
+ * Press at `x`, pull back to `x - pull` along +x from the cue ball and release.
+ * @param {AimController} a
+ * @param {import('../js/input.js').Situation} c
+ * @param {number} pull metres
+ */
+function pullAndRelease(a, c, pull) {
+  a.handle({ type: 'down', x: 1.6, y: 0.6 }, c);
+  a.handle({ type: 'move', x: 1.6 - pull, y: 0.6 }, c);
+  return a.handle({ type: 'up', x: 1.6 - pull, y: 0.6 }, c);
+}
+
+test("a full pull shoots at the server's max_speed, whatever it is", () => {
+  const fast = pullAndRelease(new AimController(), ctx(), 2 * MAX_PULL);
+  assert.equal(fast[0].speed, DEFAULT_LIMITS.max_speed);
+  const limits = readLimits({ ...DEFAULT_LIMITS, max_speed: 7.5 });
+  const slow = pullAndRelease(new AimController(), ctx({ limits }), 2 * MAX_PULL);
+  assert.equal(slow[0].speed, 7.5);
+  const half = pullAndRelease(new AimController(), ctx({ limits }), MAX_PULL / 2);
+  assert.ok(Math.abs(half[0].speed - speedFromPower(0.5, 7.5)) < 1e-5);
+});
+
+test("the tip sent is clamped to the server's max_tip and never rounded outside it", () => {
+  const a = new AimController();
+  a.tip = [0.3, 0.4]; // on the edge of the default disc (0.5)
+  const limits = readLimits({ max_tip: 0.25 });
+  const out = pullAndRelease(a, ctx({ limits }), MAX_PULL);
+  assert.ok(Math.hypot(out[0].tip[0], out[0].tip[1]) <= 0.25);
+  assert.ok(Math.abs(out[0].tip[0] / out[0].tip[1] - 0.75) < 1e-4, 'same direction');
+  const b = new AimController();
+  b.tip = [0.5 * Math.cos(1), 0.5 * Math.sin(1)]; // exactly on the edge, irrational parts
+  const edge = pullAndRelease(b, ctx(), MAX_PULL);
+  assert.ok(Math.hypot(edge[0].tip[0], edge[0].tip[1]) <= 0.5);
 });

@@ -13,11 +13,17 @@ const room = {
 const match = (extra = {}) => ({ kind: 'eight_ball', race_to: 3, score: [1, 0], turn: 0,
   ball_in_hand: null, groups: null, requires_call: false, called_pocket: null, decision: null,
   over: false, winner: null, last_outcome: null, ...extra });
+/** @type {(seq: number, extra?: object) => Record<string, any>} */
 const stateMsg = (seq, extra = {}) => ({ type: 'state', seq, room, phase: 'aiming',
   table: { length: 2.54, width: 1.27, ball_radius: 0.028575 },
   balls: [[0, 635, 635, 0], [1, 1905, 635, 3], [9, 2000, 600, 0]], shot: null,
   clock: { seat: 0, remaining: 50, limit: 60 }, grace: [], match: match(), ...extra });
 
+/**
+ * Reduce messages [msg, now?] in order from `start`.
+ * @param {[any, number?][]} msgs
+ * @param {import('../js/state.js').RoomState} [start]
+ */
 function run(msgs, start = initialState()) {
   let s = start;
   const effects = [];
@@ -118,6 +124,7 @@ test('events become sounds with their speed and time; aim is relayed', () => {
   ]);
   assert.deepEqual(s.aim, { seat: 1, angle: 1.5, power: 0.3, tip: [0, 0.1], at: 3 });
   const sound = effects.find((e) => e.kind === 'sound');
+  assert.ok(sound);
   assert.equal(sound.sound, 'ball');
   assert.equal(sound.speed, 3.4);
   assert.equal(sound.t, 0.0833);
@@ -150,6 +157,7 @@ test('groups: balls still to pot per seat, pocketed balls, winner', () => {
 });
 
 test('chat keeps the last 50 lines; errors are kept with their time', () => {
+  /** @type {[any, number?][]} */
   const msgs = [];
   for (let i = 0; i < 60; i++) {
     msgs.push([{ type: 'chat', seq: i + 2, seat: 1, name: 'Ben', text: `m${i}` }]);
@@ -159,6 +167,7 @@ test('chat keeps the last 50 lines; errors are kept with their time', () => {
   const { s } = run([[stateMsg(1)], ...msgs]);
   assert.equal(s.chat.length, 50);
   assert.equal(s.chat[49].text, 'm59');
+  assert.ok(s.error);
   assert.equal(s.error.code, 'not_your_turn');
   assert.equal(s.error.at, 7);
 });
