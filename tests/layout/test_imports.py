@@ -1,0 +1,146 @@
+"""The import graph: layers point one way (`api → rooms → protocol, store, rules → engine`)
+and no module imports itself back through others. Read from the source with `ast`."""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+SERVER = Path(__file__).resolve().parents[2] / "server"
+
+# What each layer may import besides itself. `codec` and `config` are leaves everyone may
+# use; `app`, `__main__` and `embedded` wire the layers together and may import anything.
+ALLOWED: dict[str, set[str]] = {
+    "codec": set(),
+    "config": set(),
+    "engine": {"codec"},
+    "rules": {"engine", "codec"},
+    "protocol": {"rules", "engine", "codec"},
+    "store": {"codec"},
+    "rooms": {"protocol", "store", "rules", "engine", "codec", "config"},
+    "api": {"rooms", "protocol", "store", "rules", "engine", "codec", "config"},
+}
+WIRING = {"app", "__main__", "embedded", "__init__"}
+
+
+def module_name(path: Path) -> str:
+    parts = path.relative_to(SERVER.parent).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def imports_of(path: Path) -> set[str]:
+    """Modules of `server` imported at run time (imports under `if TYPE_CHECKING:` are for
+    the type checker only)."""
+    tree = ast.parse(path.read_text())
+    package = (
+        module_name(path) if path.name == "__init__.py" else module_name(path).rpartition(".")[0]
+    )
+    found: set[str] = set()
+
+    def visit(node: ast.AST) -> None:
+        if isinstance(node, ast.If) and "TYPE_CHECKING" in ast.unparse(node.test):
+            return
+        if isinstance(node, ast.Import):
+            found.update(a.name for a in node.names if a.name.startswith("server"))
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                anchor = package.split(".")
+                anchor = anchor[: len(anchor) - node.level + 1]
+                base = ".".join([*anchor, base] if base else anchor)
+            if base.startswith("server"):
+                found.add(base)
+        for child in ast.iter_child_nodes(node):
+            visit(child)
+
+    visit(tree)
+    return found
+
+
+def layer(module: str) -> str:
+    return module.split(".")[1] if module.count(".") else "__init__"
+
+
+MODULES = {module_name(p): imports_of(p) for p in SERVER.rglob("*.py")}
+
+
+def upward_imports(modules: dict[str, set[str]]) -> list[str]:
+    upward = []
+    for module, imported in modules.items():
+        own = layer(module)
+        if own in WIRING:
+            continue
+        for target in imported:
+            other = layer(target)
+            if other != own and other not in ALLOWED[own]:
+                upward.append(f"{module} -> {target}")
+    return upward
+
+
+def test_every_layer_imports_only_the_layers_below_it():
+    assert upward_imports(MODULES) == []
+
+
+PACKAGES = {module_name(p) for p in SERVER.rglob("__init__.py")}
+
+
+def cycles_in(modules: dict[str, set[str]], packages: set[str]) -> list[list[str]]:
+    """Every cycle met by a depth-first walk, except those through a package's `__init__`
+    (re-exporting its own modules is not a cycle of the design)."""
+
+    def resolve(target: str) -> str | None:
+        while target and target not in modules:
+            target = target.rpartition(".")[0]
+        return target or None
+
+    graph = {
+        m: sorted({t for i in imported if (t := resolve(i)) and t != m})
+        for m, imported in modules.items()
+    }
+    state: dict[str, int] = {}
+    cycles: list[list[str]] = []
+
+    def walk(node: str, path: list[str]) -> None:
+        state[node] = 1
+        for nxt in graph[node]:
+            if state.get(nxt) == 1 and nxt in path:
+                cycles.append([*path[path.index(nxt) :], nxt])
+            elif nxt not in state:
+                walk(nxt, [*path, nxt])
+        state[node] = 2
+
+    for start in sorted(graph):
+        if start not in state:
+            walk(start, [start])
+    return [c for c in cycles if not packages.intersection(c)]
+
+
+def test_the_module_graph_has_no_cycle():
+    assert cycles_in(MODULES, PACKAGES) == []
+
+
+def test_the_check_sees_a_cycle():
+    modules = {"server.a": {"server.b"}, "server.b": {"server.c"}, "server.c": {"server.a"}}
+    assert cycles_in(modules, set()) == [["server.a", "server.b", "server.c", "server.a"]]
+
+
+@pytest.mark.parametrize(
+    ("module", "target"),
+    [
+        ("server.rooms.live", "server.api.messages"),
+        ("server.store.restore", "server.rooms"),
+        ("server.engine.table", "server.rules"),
+        ("server.protocol.plan", "server.rooms.room"),
+    ],
+)
+def test_the_check_sees_an_upward_import(module: str, target: str):
+    assert upward_imports({module: {target}}) == [f"{module} -> {target}"]
+
+
+def test_relative_imports_resolve_and_type_checking_imports_are_left_out():
+    observer = imports_of(SERVER / "rooms" / "observer.py")
+    assert "server.protocol" in observer and "server.engine" in observer
+    assert "server.rooms.room" not in observer  # under `if TYPE_CHECKING:`
+    assert "server.rooms.room" in imports_of(SERVER / "rooms" / "live.py")  # `from .room`
