@@ -94,7 +94,7 @@ class Settings(BaseSettings):
     web_dir: Path = REPO_ROOT / "web"
     db_path: Path = Field(
         default=Path("billiards.db"),
-        validation_alias=AliasChoices("db_path", "POOL_DB_PATH", "BILLIARDS_DB"),
+        validation_alias=AliasChoices("POOL_DB_PATH", "BILLIARDS_DB"),
     )
 
     @field_validator("allowed_origins", mode="before")

@@ -26,6 +26,7 @@ def test_the_database_path_is_a_setting_with_its_older_name_kept():
     assert Settings.from_env({}).db_path == Path("billiards.db")
     assert Settings.from_env({"POOL_DB_PATH": "/data/a.db"}).db_path == Path("/data/a.db")
     assert Settings.from_env({"BILLIARDS_DB": "/data/b.db"}).db_path == Path("/data/b.db")
+    assert Settings.from_env({"DB_PATH": "/x.db"}).db_path == Path("billiards.db")  # no prefix
 
 
 @pytest.mark.parametrize(("variable", "value"), [
