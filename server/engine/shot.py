@@ -3,8 +3,17 @@
 The cue ball is struck by an impulse through the tip's contact point. With the ball speed
 `V` along `d`, the tip offset `(side, height)` (fractions of the radius `R`) gives the
 angular velocity `w = r x J / I` with `I = 2/5 m R^2`: a hit at 0.4 R above centre is a
-natural roll, below centre is draw, left/right is side spin. Squirt and swerve are not
-modelled.
+natural roll, below centre is draw, left/right is side spin.
+
+Squirt (Alciatore, TP A-31 "squirt angle"): a side offset x = side pushes the cue ball off
+the aim line, away from the side struck, by
+
+    tan(a) = 5/2 x sqrt(1 - x^2) / (1 + m_ball / m_end + 5/2 (1 - x^2))
+
+where m_end is the cue's end mass (`PhysicsParams.cue_mass_ratio` = m_ball / m_end). The
+ball travels along the squirted line, and its spin is r x J / I for that impulse J (the
+sideways part of J turns a little of the side spin back). Swerve and masse (an elevated
+cue) are not modelled.
 """
 
 from __future__ import annotations
@@ -14,6 +23,9 @@ from dataclasses import dataclass
 
 MAX_SPEED = 12.0  # m/s
 MAX_TIP = 0.5  # fraction of the radius; beyond it a real cue miscues
+# Ball mass / cue end mass (pooltool 0.6.0's cue: end mass = ball mass / 30); the value
+# the engine uses is `PhysicsParams.cue_mass_ratio`.
+DEFAULT_CUE_MASS_RATIO = 30.0
 
 
 @dataclass(frozen=True)
@@ -41,17 +53,32 @@ class Shot:
         if math.hypot(side, height) > MAX_TIP + 1e-12:
             raise ValueError(f"tip offset must be within {MAX_TIP} of the radius")
 
+    def squirt(self, mass_ratio: float = DEFAULT_CUE_MASS_RATIO) -> float:
+        """The squirt angle in radians, positive to the left of the aim line (right
+        english squirts left); 0 without side offset."""
+        x = self.tip[0]
+        cos2 = 1.0 - x * x
+        return math.atan(2.5 * x * math.sqrt(cos2) / (1.0 + mass_ratio + 2.5 * cos2))
+
+    def direction(self, mass_ratio: float = DEFAULT_CUE_MASS_RATIO) -> float:
+        """The angle in radians of the cue ball's path just after the strike: the aim
+        turned by the squirt (a guide line shows this one)."""
+        return self.angle + self.squirt(mass_ratio)
+
     def cue_ball_motion(
-        self, radius: float
+        self, radius: float, mass_ratio: float = DEFAULT_CUE_MASS_RATIO
     ) -> tuple[tuple[float, float], tuple[float, float, float]]:
         """Velocity (vx, vy) and angular velocity (wx, wy, wz) just after the strike."""
-        dx, dy = math.cos(self.angle), math.sin(self.angle)
         side, height = self.tip
+        alpha = self.squirt(mass_ratio)
+        ex, ey = math.cos(self.angle + alpha), math.sin(self.angle + alpha)
         a, b = side * radius, height * radius
+        c = math.sqrt(max(radius * radius - a * a - b * b, 0.0))
         k = 5.0 * self.speed / (2.0 * radius * radius)
-        # r = -c d + a s + b z with s = (dy, -dx, 0) the right-hand side; J = m V d.
-        # s x d = z, z x d = (-dy, dx, 0)
-        wx = k * b * -dy
-        wy = k * b * dx
-        wz = k * a
-        return (self.speed * dx, self.speed * dy), (wx, wy, wz)
+        # r = -c d + a s + b z with s = (dy, -dx, 0) the aim's right-hand side; J = m V e,
+        # e = d turned left by the squirt. s x e = cos(alpha) z, d x e = sin(alpha) z,
+        # z x e = (-ey, ex, 0).
+        wx = k * b * -ey
+        wy = k * b * ex
+        wz = k * (a * math.cos(alpha) - c * math.sin(alpha))
+        return (self.speed * ex, self.speed * ey), (wx, wy, wz)

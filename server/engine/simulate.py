@@ -52,7 +52,7 @@ def strike(
     row = balls.index(CUE)
     if balls.states[row] == MotionState.POCKETED:
         raise ValueError("the cue ball is not on the table")
-    (vx, vy), (wx, wy, wz) = shot.cue_ball_motion(params.radius)
+    (vx, vy), (wx, wy, wz) = shot.cue_ball_motion(params.radius, params.cue_mass_ratio)
     balls.velocities[row] = (vx, vy)
     balls.spins[row] = (wx, wy, wz)
     classify(balls.velocities, balls.spins, balls.states, row, params.radius)

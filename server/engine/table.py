@@ -5,8 +5,12 @@ cushion noses; x runs along the long side. The head (where the break is taken fr
 left quarter, the rack sits on the foot spot in the right quarter.
 
 A cushion is a straight segment of a rail between two pocket mouths. Its two ends are the
-jaws (the "points" of the pocket): points a ball can hit. A ball is pocketed when its centre
-crosses the mouth line between the two jaws of a pocket.
+jaws (the "points" of the pocket). From each point a facing, the cushion's cut side, runs
+back into the pocket at the WPA facing angle (142 degrees to the cushion nose at a corner,
+104 at a side pocket), so the throat narrows behind the mouth. Behind the mouth line lies
+the shelf, then the hole: a ball drops when its centre is over the hole (within the hole's
+radius of its centre), not when it crosses the mouth line, so a slow ball can stop on the
+shelf (a hanger) and a ball can rattle between the facings and come back out.
 """
 
 from __future__ import annotations
@@ -33,6 +37,17 @@ TABLE_SIZES: dict[str, tuple[float, float]] = {
 }
 CORNER_MOUTH = 0.114  # m, jaw to jaw
 SIDE_MOUTH = 0.127  # m, jaw to jaw
+# Facing angles between the cushion nose and the pocket facing (WPA: 142 +-1 and 104 +-1).
+CORNER_FACING_DEG = 142.0
+SIDE_FACING_DEG = 104.0
+# Shelf: from the middle of the mouth line to the edge of the hole (WPA: corner 1 to 2.25 in,
+# side 0 to 0.375 in; Roger Long's survey of real corners: 3/4 to 2 in). 38 mm is where
+# pooltool 0.6.0's corner lets a ball go before it drops.
+CORNER_SHELF = 0.038
+SIDE_SHELF = 0.00635
+# Hole radii (pooltool 0.6.0's pocket radii).
+CORNER_HOLE = 0.062
+SIDE_HOLE = 0.0645
 
 
 @dataclass(frozen=True)
@@ -46,10 +61,15 @@ class Cushion:
 
 @dataclass(frozen=True)
 class Pocket:
-    """A pocket: the mouth between two jaw points, and a drop circle behind it.
+    """A pocket: the mouth between two jaw points, two facings, a shelf and the hole.
 
     `outward` is the unit normal of the mouth line pointing into the pocket; `center` and
-    `radius` describe the hole for drawing and for placing pocketed balls.
+    `radius` are the circle clients draw, and a pocketed ball rests at `center` (both as
+    before the pockets had shelves, so stored states and drawings are unchanged). The
+    physics uses `hole` and `hole_radius`: a ball whose centre comes within `hole_radius`
+    of `hole` drops. `facings` are the two cut sides, one from each jaw point (in the
+    order of `jaws`) into the pocket; `shelf` is the distance from the middle of the
+    mouth line to the edge of the hole.
     """
 
     name: str
@@ -57,6 +77,10 @@ class Pocket:
     outward: tuple[float, float]
     center: tuple[float, float]
     radius: float
+    shelf: float = 0.0
+    facings: tuple[tuple[tuple[float, float], tuple[float, float]], ...] = ()
+    hole: tuple[float, float] = (0.0, 0.0)
+    hole_radius: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -103,7 +127,7 @@ class Table:
 
     def __post_init__(self) -> None:
         cushions, pockets = _build_geometry(
-            self.length, self.width, self.corner_mouth, self.side_mouth
+            self.length, self.width, self.corner_mouth, self.side_mouth, self.ball_radius
         )
         object.__setattr__(self, "cushions", cushions)
         object.__setattr__(self, "pockets", pockets)
@@ -145,18 +169,34 @@ class Table:
         """(C, 6) float64: start x, y, end x, y, normal x, y of each cushion."""
         return np.array([[*c.start, *c.end, *c.normal] for c in self.cushions], dtype=np.float64)
 
+    def facings(self) -> tuple[tuple[tuple[float, float], tuple[float, float]], ...]:
+        """The facing (start, end) that runs from each jaw point, in `jaws` order."""
+        by_jaw = {j: f for p in self.pockets for j, f in zip(p.jaws, p.facings, strict=True)}
+        return tuple(by_jaw[j] for j in self.jaws)
+
     def jaw_array(self) -> np.ndarray:
-        """(J, 2) float64 jaw points."""
-        return np.array(self.jaws, dtype=np.float64)
+        """(J, 6) float64: jaw point x, y, the far end x, y of its facing, and the facing's
+        unit normal x, y (pointing into the pocket's throat)."""
+        rows = []
+        for (jx, jy), (_, (ex, ey)) in zip(self.jaws, self.facings(), strict=True):
+            fx, fy = ex - jx, ey - jy
+            length = math.hypot(fx, fy)
+            nx, ny = -fy / length, fx / length
+            # Towards the mouth's middle, i.e. into the throat.
+            pocket = next(p for p in self.pockets if (jx, jy) in p.jaws)
+            mx = (pocket.jaws[0][0] + pocket.jaws[1][0]) / 2 - jx
+            my = (pocket.jaws[0][1] + pocket.jaws[1][1]) / 2 - jy
+            if nx * mx + ny * my < 0:
+                nx, ny = -nx, -ny
+            rows.append([jx, jy, ex, ey, nx, ny])
+        return np.array(rows, dtype=np.float64)
 
     def pocket_array(self) -> np.ndarray:
-        """(P, 6) float64: jaw A x, y, jaw B x, y, outward normal x, y of each mouth."""
-        return np.array(
-            [[*p.jaws[0], *p.jaws[1], *p.outward] for p in self.pockets], dtype=np.float64
-        )
+        """(P, 3) float64: hole centre x, y and radius of each pocket."""
+        return np.array([[*p.hole, p.hole_radius] for p in self.pockets], dtype=np.float64)
 
     def pocket_centers(self) -> np.ndarray:
-        """(P, 2) float64 drop-circle centres."""
+        """(P, 2) float64 drawn centres (where a pocketed ball rests)."""
         return np.array([p.center for p in self.pockets], dtype=np.float64)
 
     def to_dict(self) -> dict:
@@ -195,7 +235,7 @@ def _fields_by_name(value: object) -> object:
 
 
 def _build_geometry(
-    length: float, width: float, corner_mouth: float, side_mouth: float
+    length: float, width: float, corner_mouth: float, side_mouth: float, ball_radius: float
 ) -> tuple[tuple[Cushion, ...], tuple[Pocket, ...]]:
     a = corner_mouth / math.sqrt(2.0)  # each corner jaw's distance from the corner
     s = side_mouth / 2.0
@@ -209,52 +249,56 @@ def _build_geometry(
         Cushion((0.0, width - a), (0.0, a), (1.0, 0.0)),  # left (head)
     )
     d = 1.0 / math.sqrt(2.0)
+    mouths = (
+        ("bottom_left", ((0.0, a), (a, 0.0)), (-d, -d)),
+        ("bottom_side", ((mid - s, 0.0), (mid + s, 0.0)), (0.0, -1.0)),
+        ("bottom_right", ((length - a, 0.0), (length, a)), (d, -d)),
+        ("top_right", ((length, width - a), (length - a, width)), (d, d)),
+        ("top_side", ((mid + s, width), (mid - s, width)), (0.0, 1.0)),
+        ("top_left", ((a, width), (0.0, width - a)), (-d, d)),
+    )
+    # The drawn circles (and where a pocketed ball rests), exactly as before pockets had
+    # shelves, so stored states and drawings do not change: a side circle touches the
+    # middle of the mouth line, a corner circle sits 2 cm further back.
     corner_r = corner_mouth / 2.0 + 0.01
     side_r = side_mouth / 2.0
-    # The drop circle sits behind the mouth so that it touches the mouth line's middle.
-    corner_back = corner_r - a / 2.0 * math.sqrt(2.0) + 0.02
-    pockets = (
-        Pocket(
-            "bottom_left",
-            ((0.0, a), (a, 0.0)),
-            (-d, -d),
-            (-corner_back * d, -corner_back * d),
-            corner_r,
-        ),
-        Pocket(
-            "bottom_side",
-            ((mid - s, 0.0), (mid + s, 0.0)),
-            (0.0, -1.0),
-            (mid, -side_r * 0.6),
-            side_r,
-        ),
-        Pocket(
-            "bottom_right",
-            ((length - a, 0.0), (length, a)),
-            (d, -d),
-            (length + corner_back * d, -corner_back * d),
-            corner_r,
-        ),
-        Pocket(
-            "top_right",
-            ((length, width - a), (length - a, width)),
-            (d, d),
-            (length + corner_back * d, width + corner_back * d),
-            corner_r,
-        ),
-        Pocket(
-            "top_side",
-            ((mid + s, width), (mid - s, width)),
-            (0.0, 1.0),
-            (mid, width + side_r * 0.6),
-            side_r,
-        ),
-        Pocket(
-            "top_left",
-            ((a, width), (0.0, width - a)),
-            (-d, d),
-            (-corner_back * d, width + corner_back * d),
-            corner_r,
-        ),
-    )
-    return cushions, pockets
+    back = corner_r - a / 2.0 * math.sqrt(2.0) + 0.02
+    drawn = {
+        "bottom_left": ((-back * d, -back * d), corner_r),
+        "bottom_side": ((mid, -side_r * 0.6), side_r),
+        "bottom_right": ((length + back * d, -back * d), corner_r),
+        "top_right": ((length + back * d, width + back * d), corner_r),
+        "top_side": ((mid, width + side_r * 0.6), side_r),
+        "top_left": ((-back * d, width + back * d), corner_r),
+    }
+    # Each jaw point's cushion: the unit vector along its nose away from the pocket, and its
+    # inward normal.
+    along: dict[tuple[float, float], tuple[tuple[float, float], tuple[float, float]]] = {}
+    for c in cushions:
+        ex, ey = c.end[0] - c.start[0], c.end[1] - c.start[1]
+        n = math.hypot(ex, ey) or 1.0  # (a degenerate table still builds)
+        along[c.start] = ((ex / n, ey / n), c.normal)
+        along[c.end] = ((-ex / n, -ey / n), c.normal)
+    pockets = []
+    for name, jaws, (ux, uy) in mouths:
+        side = "side" in name
+        angle = math.radians(SIDE_FACING_DEG if side else CORNER_FACING_DEG)
+        shelf = SIDE_SHELF if side else CORNER_SHELF
+        hole = SIDE_HOLE if side else CORNER_HOLE
+        mx = (jaws[0][0] + jaws[1][0]) / 2
+        my = (jaws[0][1] + jaws[1][1]) / 2
+        hole_center = (mx + (shelf + hole) * ux, my + (shelf + hole) * uy)
+        facings = []
+        for jaw in jaws:
+            (ex, ey), (nx, ny) = along[jaw]
+            # The nose turned by the facing angle, out of the bed.
+            fx = math.cos(angle) * ex - math.sin(angle) * nx
+            fy = math.cos(angle) * ey - math.sin(angle) * ny
+            # Deep enough that no ball gets past the hole without being over it.
+            depth = (shelf + hole + ball_radius) / max(fx * ux + fy * uy, 0.5)
+            facings.append((jaw, (jaw[0] + depth * fx, jaw[1] + depth * fy)))
+        center, drawn_r = drawn[name]
+        pockets.append(
+            Pocket(name, jaws, (ux, uy), center, drawn_r, shelf, tuple(facings), hole_center, hole)
+        )
+    return cushions, tuple(pockets)

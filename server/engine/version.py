@@ -19,10 +19,24 @@ from .params import DEFAULT_PARAMS, PhysicsParams
 from .physics import constants
 from .rack import JITTER, LATTICE_GAP
 from .simulate import DEFAULT_TICK, MAX_SHOT_SECONDS
-from .table import BALL_MASS, BALL_RADIUS, CORNER_MOUTH, SIDE_MOUTH, TABLE_SIZES
+from .table import (
+    BALL_MASS,
+    BALL_RADIUS,
+    CORNER_FACING_DEG,
+    CORNER_HOLE,
+    CORNER_MOUTH,
+    CORNER_SHELF,
+    SIDE_FACING_DEG,
+    SIDE_HOLE,
+    SIDE_MOUTH,
+    SIDE_SHELF,
+    TABLE_SIZES,
+)
 
 # Bump when a change to the physics code changes a result without changing a number below.
-PHYSICS_REVISION = 1
+# 2: Han 2005 cushion above the centre, throw and spin transfer, squirt, pockets with
+#    facings, shelf and hole (issue 14).
+PHYSICS_REVISION = 2
 
 # Module constants that change a result, by name.
 _CONSTANTS: tuple[tuple[str, int | float], ...] = (
@@ -30,6 +44,12 @@ _CONSTANTS: tuple[tuple[str, int | float], ...] = (
     ("table.BALL_MASS", BALL_MASS),
     ("table.CORNER_MOUTH", CORNER_MOUTH),
     ("table.SIDE_MOUTH", SIDE_MOUTH),
+    ("table.CORNER_FACING_DEG", CORNER_FACING_DEG),
+    ("table.SIDE_FACING_DEG", SIDE_FACING_DEG),
+    ("table.CORNER_SHELF", CORNER_SHELF),
+    ("table.SIDE_SHELF", SIDE_SHELF),
+    ("table.CORNER_HOLE", CORNER_HOLE),
+    ("table.SIDE_HOLE", SIDE_HOLE),
     ("rack.LATTICE_GAP", LATTICE_GAP),
     ("rack.JITTER", JITTER),
     ("constants.EPS_SPEED", constants.EPS_SPEED),

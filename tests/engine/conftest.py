@@ -41,10 +41,14 @@ def segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def in_play_area(table, positions: np.ndarray, tol: float = 1e-9) -> np.ndarray:
-    """(K,) bool: a ball centred there lies on the bed: inside the cushion noses' box, at
-    least R from every cushion segment and jaw, and on the table side of every pocket mouth."""
+    """(K,) bool: a ball centred there lies on the bed (inside the cushion noses' box, at
+    least R from every cushion segment and jaw point, on the table side of every pocket
+    mouth) or on a pocket's shelf (past its mouth line, at least R inside both facings
+    and from the jaw points, and not over the hole, where it would have dropped)."""
     r = table.ball_radius
     p = np.asarray(positions, dtype=float).reshape(-1, 2)
+    jaws = np.array(table.jaws)
+    clear_of_points = (np.linalg.norm(p[:, None] - jaws[None], axis=2) >= r - tol).all(axis=1)
     ok = (
         (p[:, 0] >= -tol)
         & (p[:, 0] <= table.length + tol)
@@ -53,7 +57,21 @@ def in_play_area(table, positions: np.ndarray, tol: float = 1e-9) -> np.ndarray:
     )
     for c in table.cushions:
         ok &= segment_distance(p, np.array(c.start), np.array(c.end)) >= r - tol
+    past_any = np.zeros(len(p), dtype=bool)
+    on_shelf = np.zeros(len(p), dtype=bool)
     for pocket in table.pockets:
         a = np.array(pocket.jaws[0])
-        ok &= (p - a) @ np.array(pocket.outward) <= tol
-    return ok
+        past = (p - a) @ np.array(pocket.outward) > tol
+        past_any |= past
+        inside = past.copy()
+        for start, end in pocket.facings:
+            inside &= segment_distance(p, np.array(start), np.array(end)) >= r - tol
+            # and on the throat's side of the facing's line
+            f = np.array(end) - np.array(start)
+            n = np.array([-f[1], f[0]])
+            mid = (np.array(pocket.jaws[0]) + np.array(pocket.jaws[1])) / 2
+            n = n if (mid - np.array(start)) @ n > 0 else -n
+            inside &= (p - np.array(start)) @ n >= 0
+        inside &= np.linalg.norm(p - np.array(pocket.hole), axis=1) >= pocket.hole_radius - tol
+        on_shelf |= inside
+    return ((ok & ~past_any) | on_shelf) & clear_of_points

@@ -12,7 +12,8 @@ from server.engine.physics.detect import line_contact_time, quadratic_contact_ti
 from server.engine.physics.resolve import ball_ball
 
 R = 0.028575
-ELASTIC = PhysicsParams(e_ball=1.0).array()
+# The paper's balls: elastic and frictionless (§1), so no throw.
+ELASTIC = PhysicsParams(e_ball=1.0, u_ball_a=0.0, u_ball_b=0.0).array()
 
 
 def collide(p1, p2, v1, v2, params=ELASTIC):

@@ -64,23 +64,39 @@ def test_stop_shot(table):
     assert abs(v_obj[1]) < 1e-9
 
 
+def stun_cut_angle(cut, speed, params=DEFAULT_PARAMS):
+    """Angle between the cue ball's and the object ball's paths after a stun cut: the
+    normal impulse (1 + e)/2 v cos(cut) and the throw friction impulse, mu (TP A-14) times
+    it or what stops the slip v sin(cut) / 7, whichever is smaller."""
+    e, a, b, c = params.e_ball, params.u_ball_a, params.u_ball_b, params.u_ball_c
+    normal = (1 + e) / 2 * speed * math.cos(cut)
+    slip = speed * math.sin(cut)
+    friction = min((a + b * math.exp(-c * slip)) * normal, slip / 7)
+    n, t = np.array([math.cos(cut), math.sin(cut)]), np.array([-math.sin(cut), math.cos(cut)])
+    obj = normal * n - friction * t
+    cue = speed * np.array([1.0, 0.0]) - obj
+    return angle_between(cue, obj)
+
+
 @pytest.mark.parametrize("cut_deg", [15, 30, 45, 60])
 def test_ninety_degree_rule(table, cut_deg):
     # Sliding, spin-free cue ball: after a cut it leaves along the tangent line, 90 degrees
-    # from the object ball's path; with e < 1 it keeps (1 - e)/2 of its normal speed, which
-    # closes the angle a little (most at thin cuts' opposite, the near-full hits).
+    # from the object ball's path. With e < 1 it keeps (1 - e)/2 of its normal speed, and
+    # throw friction takes some of its tangential speed: both close the angle a little
+    # (Dr. Dave, "90 degree rule" FAQ and TP A-5: a few degrees under 90 in practice).
     cut = math.radians(cut_deg)
     obj = np.array([1.2, 0.6])
     contact = obj - 2 * R * np.array([math.cos(cut), math.sin(cut)])
     cue = contact - np.array([0.01, 0.0])
     balls = BallSet.place({0: tuple(cue), 1: tuple(obj)})
-    play_until(table, balls, Shot(0.0, 4.0), hit(0, 1))
-    e = DEFAULT_PARAMS.e_ball
-    expected = math.degrees(math.atan2(math.sin(cut), (1 - e) / 2 * math.cos(cut)))
+    events = play_until(table, balls, Shot(0.0, 4.0), hit(0, 1))
+    impact = next(e for e in events if e.kind == "ball")
+    expected = stun_cut_angle(cut, impact.speed / math.cos(cut))
     measured = angle_between(velocity(balls, 0), velocity(balls, 1))
     assert measured == pytest.approx(expected, abs=0.5)
     if cut_deg >= 30:
-        assert measured == pytest.approx(90, abs=3)
+        # Was +-3 without throw; throw friction at a 30 degree cut costs another ~1.
+        assert measured == pytest.approx(90, abs=4)
 
 
 def test_thirty_degree_rule(table):
@@ -145,24 +161,31 @@ def test_a_shot_into_the_jaw_rattles_out(table):
     assert 1 not in result.pocketed()
 
 
-def test_cushion_rebound_keeps_eighty_percent_of_the_normal_speed(table):
-    balls = BallSet.place({0: (1.0, 0.3)})
+def test_a_stun_cushion_rebound_keeps_hans_share_of_the_normal_speed(table):
+    # The old test pinned e_cushion = 0.8 for the whole normal speed: with the contact on
+    # the nose above the centre (Han 2005), a stun ball straight in keeps
+    # (1 + e) cos^2 t + 2/7 sin^2 t - 1 of it (0.74 at e = 0.85; see test_cushion.py).
+    balls = BallSet.place({0: (1.0, 0.04)})  # 11 mm from the rail: still a stun ball
     events = play_until(
         table, balls, Shot(-math.pi / 2, 2.0), lambda b, ev: any(e.kind == "cushion" for e in ev)
     )
     bounce = next(e for e in events if e.kind == "cushion")
     vx, vy = velocity(balls, 0)
     assert table.cushions[bounce.target].normal == (0.0, 1.0)
-    assert vy == pytest.approx(DEFAULT_PARAMS.e_cushion * bounce.speed, rel=0.03)
+    s = 2 * DEFAULT_PARAMS.cushion_nose - 1
+    share = (1 + DEFAULT_PARAMS.e_cushion) * (1 - s * s) + 2 / 7 * s * s - 1
+    assert vy == pytest.approx(share * bounce.speed, rel=0.03)
     assert abs(vx) < 1e-9
 
 
 def rebound_tangent(table, side):
     balls = BallSet.place({0: (0.8, 0.4)})
+    # Aimed so that the squirted path runs at -45 degrees: only the spin differs.
+    squirt = Shot(-math.pi / 4, 2.0, tip=(side, 0.0)).squirt()
     play_until(
         table,
         balls,
-        Shot(-math.pi / 4, 2.0, tip=(side, 0.0)),
+        Shot(-math.pi / 4 - squirt, 2.0, tip=(side, 0.0)),
         lambda b, ev: any(e.kind == "cushion" for e in ev),
     )
     return velocity(balls, 0)[0]

@@ -14,13 +14,12 @@ from server.engine import BallSet, Shot, Table, simulate
 
 pytestmark = pytest.mark.timeout(120)
 DATA = json.loads((Path(__file__).parent / "data" / "zeno_push.json").read_text())
+SHOT = Shot(DATA["shot"]["angle"], DATA["shot"]["speed"], tuple(DATA["shot"].get("tip", (0, 0))))
 
 
 def test_a_zeno_contact_ends_the_shot_quickly_without_overlap() -> None:
     table = Table.pool("9ft")
-    result = simulate(
-        table, BallSet.from_dict(DATA["balls"]), Shot(DATA["shot"]["angle"], DATA["shot"]["speed"])
-    )
+    result = simulate(table, BallSet.from_dict(DATA["balls"]), SHOT)
     assert result.stalled_ticks >= 1  # the loop was met and cut
     assert len(result.frames) < 20 * 120  # seconds of play, not the 300 s guard
     assert result.final.at_rest()
@@ -32,9 +31,5 @@ def test_a_zeno_contact_ends_the_shot_quickly_without_overlap() -> None:
 
 
 def test_the_stalled_tick_reports_each_contact_once() -> None:
-    result = simulate(
-        Table.pool("9ft"),
-        BallSet.from_dict(DATA["balls"]),
-        Shot(DATA["shot"]["angle"], DATA["shot"]["speed"]),
-    )
+    result = simulate(Table.pool("9ft"), BallSet.from_dict(DATA["balls"]), SHOT)
     assert len(result.events) < 500  # not the 5000 repeats of the stalled tick

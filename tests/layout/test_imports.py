@@ -17,10 +17,11 @@ ALLOWED: dict[str, set[str]] = {
     "config": set(),
     "engine": {"codec"},
     "rules": {"engine", "codec"},
+    "ai": {"rules", "engine", "codec"},
     "protocol": {"rules", "engine", "codec"},
     "store": {"codec"},
-    "rooms": {"protocol", "store", "rules", "engine", "codec", "config"},
-    "api": {"rooms", "protocol", "store", "rules", "engine", "codec", "config"},
+    "rooms": {"protocol", "store", "ai", "rules", "engine", "codec", "config"},
+    "api": {"rooms", "protocol", "store", "ai", "rules", "engine", "codec", "config"},
 }
 WIRING = {"app", "__main__", "embedded", "__init__"}
 

@@ -27,6 +27,13 @@ P_E_BALL = 6
 P_E_CUSHION = 7
 P_F_CUSHION = 8
 P_CELS = 9
+P_CUSHION_NOSE = 10
+P_E_CUSHION_KNEE = 11
+P_E_CUSHION_SLOPE = 12
+P_E_CUSHION_MIN = 13
+P_U_BALL_A = 14
+P_U_BALL_B = 15
+P_U_BALL_C = 16
 
 # Speeds below this (m/s) count as zero: far below anything a player can see.
 EPS_SPEED = 1e-9

@@ -4,8 +4,9 @@ Ball-ball (paper §2): with relative position d and velocity v the centres are 2
 A t^2 + B t + C = 0, A = v.v, B = 2 d.v, C = d.d - (2R)^2. Only approaching pairs (B < 0)
 can collide; an approaching pair that already touches or overlaps by round-off (C <= 0)
 collides now. The smaller root is taken in the cancellation-free form 2C / (-B + sqrt(disc)).
-A jaw is the same quadratic with R in place of 2R; a cushion and a pocket mouth are lines,
-so their times are linear.
+A jaw point is the same quadratic with R in place of 2R, and a pocket's hole the same with
+the hole's radius (the ball drops when its centre is over the hole); a cushion and a jaw's
+facing are segments, so their times are linear.
 """
 
 import math
@@ -64,7 +65,8 @@ def earliest_event(pos, vel, st, n, horizon, cush, jaws, pockets, length, width,
     """The first collision of any kind within `horizon` seconds.
 
     Returns (time, kind, a, b): kind is EV_NONE when nothing happens in time; a is a ball
-    row; b is the other ball's row, or the cushion / jaw / pocket index.
+    row; b is the other ball's row, or the cushion / jaw / pocket index (a jaw's facing is
+    its index plus the number of jaws).
     """
     radius = p[P_RADIUS]
     best_t = math.inf
@@ -116,22 +118,30 @@ def earliest_event(pos, vel, st, n, horizon, cush, jaws, pockets, length, width,
                 if 0.0 <= along <= 1.0:
                     best_t, kind, best_a, best_b = t, EV_CUSHION, i, c
                     limit = t
-        for k in range(jaws.shape[0]):
-            t = quadratic_contact_time(px - jaws[k, 0], py - jaws[k, 1], vx, vy, radius)
+        n_jaws = jaws.shape[0]
+        for k in range(n_jaws):
+            jx, jy = jaws[k, 0], jaws[k, 1]
+            t = quadratic_contact_time(px - jx, py - jy, vx, vy, radius)
             if t <= limit and t < best_t:
                 best_t, kind, best_a, best_b = t, EV_JAW, i, k
                 limit = t
-        for k in range(pockets.shape[0]):
-            # Crossing the mouth line outward (offset 0 along -outward normal).
-            nx, ny = -pockets[k, 4], -pockets[k, 5]
-            t = line_contact_time(px, py, vx, vy, pockets[k, 0], pockets[k, 1], nx, ny, 0.0)
+            # The facing behind the point: a segment like a cushion (target k + n_jaws).
+            t = line_contact_time(px, py, vx, vy, jx, jy, jaws[k, 4], jaws[k, 5], radius)
             if t <= limit and t < best_t:
-                cx = px + vx * t - pockets[k, 0]
-                cy = py + vy * t - pockets[k, 1]
-                tx = pockets[k, 2] - pockets[k, 0]
-                ty = pockets[k, 3] - pockets[k, 1]
+                cx = px + vx * t - jx
+                cy = py + vy * t - jy
+                tx = jaws[k, 2] - jx
+                ty = jaws[k, 3] - jy
                 along = (cx * tx + cy * ty) / (tx * tx + ty * ty)
-                if -1e-9 <= along <= 1.0 + 1e-9:
-                    best_t, kind, best_a, best_b = t, EV_POCKET, i, k
+                if 0.0 <= along <= 1.0:
+                    best_t, kind, best_a, best_b = t, EV_JAW, i, k + n_jaws
                     limit = t
+        for k in range(pockets.shape[0]):
+            # The centre comes over the hole.
+            t = quadratic_contact_time(
+                px - pockets[k, 0], py - pockets[k, 1], vx, vy, pockets[k, 2]
+            )
+            if t <= limit and t < best_t:
+                best_t, kind, best_a, best_b = t, EV_POCKET, i, k
+                limit = t
     return best_t, kind, best_a, best_b

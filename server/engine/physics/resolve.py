@@ -1,17 +1,30 @@
 """What an event does to the balls.
 
 Ball-ball (paper §1, eq. 5): normal components exchanged, tangential kept; with restitution
-e the exchange is scaled by (1 + e)/2. Spins are untouched (no ball-ball friction).
-Cushion and jaw: the normal velocity is reversed and scaled by the cushion restitution; a
-friction impulse at the contact (at most f_c times the normal impulse, and never more than
-stops the slip) lets side spin bend the rebound and wears the spin down.
+e the exchange is scaled by (1 + e)/2. Friction at the contact (Alciatore's TP A-14 model)
+throws the object ball and passes spin between the balls.
+Cushion and jaw: Han 2005's impulse model with the contact on the cushion nose, above the
+ball's centre (see `rebound`), and a restitution that falls at high speed.
 """
 
 import math
 
 from numba import njit
 
-from .constants import P_E_BALL, P_E_CUSHION, P_F_CUSHION, P_RADIUS, POCKETED
+from .constants import (
+    P_CUSHION_NOSE,
+    P_E_BALL,
+    P_E_CUSHION,
+    P_E_CUSHION_KNEE,
+    P_E_CUSHION_MIN,
+    P_E_CUSHION_SLOPE,
+    P_F_CUSHION,
+    P_RADIUS,
+    P_U_BALL_A,
+    P_U_BALL_B,
+    P_U_BALL_C,
+    POCKETED,
+)
 from .motion import classify
 from .vector import norm as _norm
 
@@ -19,46 +32,128 @@ from .vector import norm as _norm
 @njit(cache=True)
 def ball_ball(pos, vel, w, st, i, j, p):
     """Collide balls i and j; returns the approach speed along the line of centres (0 when
-    they were not approaching, and nothing changed)."""
-    dx = pos[i, 0] - pos[j, 0]
-    dy = pos[i, 1] - pos[j, 1]
+    they were not approaching, and nothing changed).
+
+    Normal part: paper §1 eq. 5, the exchange scaled by (1 + e)/2. Tangential part: one
+    Coulomb friction impulse against the slip of the two surfaces at the contact point,
+    at most mu times the normal impulse and never more than stops the slip (each surface
+    point answers a tangential impulse J/m with 7/2 J/m, so the slip with 7 J/m), with
+    mu = a + b exp(-c |slip|) (Alciatore, TP A-14). It throws the object ball off the line
+    of centres (most for a slow stun cut; a rolling ball's topspin rubs vertically and
+    throws less), turns the cue ball's path and passes spin across: side spin, and top
+    or bottom spin from the vertical rub. Vertical impulse goes to the spin only (2-D).
+    """
+    dx = pos[j, 0] - pos[i, 0]
+    dy = pos[j, 1] - pos[i, 1]
     d2 = dx * dx + dy * dy
     rel = (vel[i, 0] - vel[j, 0]) * dx + (vel[i, 1] - vel[j, 1]) * dy
-    if rel >= 0.0 or d2 == 0.0:
+    if rel <= 0.0 or d2 == 0.0:
         return 0.0
-    k = rel / d2 * (1.0 + p[P_E_BALL]) / 2.0
-    vel[i, 0] -= k * dx
-    vel[i, 1] -= k * dy
-    vel[j, 0] += k * dx
-    vel[j, 1] += k * dy
-    classify(vel, w, st, i, p[P_RADIUS])
-    classify(vel, w, st, j, p[P_RADIUS])
-    return -rel / math.sqrt(d2)
+    d = math.sqrt(d2)
+    nx, ny = dx / d, dy / d  # from i to j
+    vn = rel / d
+    jn = vn * (1.0 + p[P_E_BALL]) / 2.0
+    radius = p[P_RADIUS]
+    # Contact point velocities: i's at +R n, j's at -R n (w x r, n horizontal).
+    ux = vel[i, 0] - vel[j, 0] - radius * (w[i, 2] + w[j, 2]) * ny
+    uy = vel[i, 1] - vel[j, 1] + radius * (w[i, 2] + w[j, 2]) * nx
+    uz = radius * ((w[i, 0] + w[j, 0]) * ny - (w[i, 1] + w[j, 1]) * nx)
+    un = ux * nx + uy * ny
+    sx, sy, sz = ux - un * nx, uy - un * ny, uz
+    slip = math.sqrt(sx * sx + sy * sy + sz * sz)
+    vel[i, 0] -= jn * nx
+    vel[i, 1] -= jn * ny
+    vel[j, 0] += jn * nx
+    vel[j, 1] += jn * ny
+    if slip > 0.0:
+        mu = p[P_U_BALL_A] + p[P_U_BALL_B] * math.exp(-p[P_U_BALL_C] * slip)
+        k = min(mu * jn, slip / 7.0) / slip
+        # Friction impulse per unit mass on j is +F, on i is -F (F along the slip).
+        fx, fy, fz = k * sx, k * sy, k * sz
+        vel[i, 0] -= fx
+        vel[i, 1] -= fy
+        vel[j, 0] += fx
+        vel[j, 1] += fy
+        # Spin: i's lever is +R n and its impulse -F, j's -R n and +F: the same change
+        # for both, -(5 / 2R) n x F.
+        c = 2.5 / radius
+        dwx = -c * (ny * fz)
+        dwy = c * (nx * fz)
+        dwz = -c * (nx * fy - ny * fx)
+        w[i, 0] += dwx
+        w[i, 1] += dwy
+        w[i, 2] += dwz
+        w[j, 0] += dwx
+        w[j, 1] += dwy
+        w[j, 2] += dwz
+    classify(vel, w, st, i, radius)
+    classify(vel, w, st, j, radius)
+    return vn
+
+
+@njit(cache=True, inline="always")
+def cushion_restitution(vn, p):
+    """Restitution at normal impact speed vn: constant up to the knee, then falling."""
+    e = p[P_E_CUSHION]
+    knee = p[P_E_CUSHION_KNEE]
+    if vn > knee:
+        e = max(e - p[P_E_CUSHION_SLOPE] * (vn - knee), p[P_E_CUSHION_MIN])
+    return e
 
 
 @njit(cache=True, inline="always")
 def rebound(vel, w, st, i, nx, ny, p):
-    """Bounce ball i off a surface with unit normal (nx, ny) pointing back at the ball;
-    returns the normal impact speed (0 when the ball was moving away)."""
-    vn = vel[i, 0] * nx + vel[i, 1] * ny
-    if vn >= 0.0:
+    """Bounce ball i off a cushion nose whose horizontal normal (nx, ny) points back at the
+    ball; returns the normal impact speed (0 when the ball was moving away).
+
+    Han 2005's rigid-cushion impulse model ("Dynamics in carom and three cushion
+    billiards", J. Mech. Sci. Tech. 19(4)), as Mathavan et al. 2010 restate it: the nose
+    touches the ball at height h above the bed, above the centre by R sin(theta),
+    sin(theta) = h/R - 1, so the contact normal leans down into the ball by theta. One
+    impulse at that point: along the contact normal (1 + e) times the approach speed
+    there, v.d cos(theta); across it Coulomb friction against the contact point's slip,
+    at most f_c times the normal impulse and never more than stops the slip (a sphere's
+    surface point answers a tangential impulse J/m with 7/2 J/m). Top, draw and side spin
+    all act through the rail. The bed takes the vertical part of the impulse (the engine
+    is 2-D); the spin takes all of it. e falls with speed (`cushion_restitution`).
+    """
+    # d: horizontal unit vector from the centre towards the cushion.
+    dx, dy = -nx, -ny
+    vn = vel[i, 0] * dx + vel[i, 1] * dy
+    if vn <= 0.0:
         return 0.0
     radius = p[P_RADIUS]
-    e = p[P_E_CUSHION]
-    vel[i, 0] -= (1.0 + e) * vn * nx
-    vel[i, 1] -= (1.0 + e) * vn * ny
-    # Friction along the cushion, t = z x n; contact point velocity v.t - R wz.
-    tx, ty = -ny, nx
-    slip_t = vel[i, 0] * tx + vel[i, 1] * ty - radius * w[i, 2]
-    # Impulses per unit mass: normal (1 + e)|vn|; slip changes by 3.5 per unit of friction.
-    jt = min(p[P_F_CUSHION] * (1.0 + e) * -vn, abs(slip_t) / 3.5)
-    if slip_t > 0.0:
-        jt = -jt
-    vel[i, 0] += jt * tx
-    vel[i, 1] += jt * ty
-    w[i, 2] -= jt / (0.4 * radius)
+    sin_t = 2.0 * p[P_CUSHION_NOSE] - 1.0
+    cos_t = math.sqrt(max(1.0 - sin_t * sin_t, 0.0))
+    # Unit vector from the centre to the contact point, and the contact point's velocity
+    # u = v + w x (R k).
+    kx, ky, kz = cos_t * dx, cos_t * dy, sin_t
+    wx, wy, wz = w[i, 0], w[i, 1], w[i, 2]
+    ux = vel[i, 0] + radius * (wy * kz - wz * ky)
+    uy = vel[i, 1] + radius * (wz * kx - wx * kz)
+    uz = radius * (wx * ky - wy * kx)
+    approach = vn * cos_t  # u.k: the rotation adds nothing along k
+    jn = (1.0 + cushion_restitution(vn, p)) * approach
+    # Slip across the contact normal.
+    sx, sy, sz = ux - approach * kx, uy - approach * ky, uz - approach * kz
+    slip = math.sqrt(sx * sx + sy * sy + sz * sz)
+    # Impulse per unit mass on the ball: -jn k - jf s/|s| (its vertical part goes into the
+    # bed and the spin).
+    px, py = -jn * kx, -jn * ky
+    if slip > 0.0:
+        jf = min(p[P_F_CUSHION] * jn, slip / 3.5) / slip
+        fx, fy, fz = -jf * sx, -jf * sy, -jf * sz
+        px += fx
+        py += fy
+        # Spin: (m R k x F) / I with I = 2/5 m R^2.
+        c = 2.5 / radius
+        w[i, 0] += c * (ky * fz - kz * fy)
+        w[i, 1] += c * (kz * fx - kx * fz)
+        w[i, 2] += c * (kx * fy - ky * fx)
+    vel[i, 0] += px
+    vel[i, 1] += py
     classify(vel, w, st, i, radius)
-    return -vn
+    return vn
 
 
 @njit(cache=True)
@@ -68,6 +163,11 @@ def cushion(vel, w, st, i, c, cush, p):
 
 @njit(cache=True)
 def jaw(pos, vel, w, st, i, k, jaws, p):
+    """Ball i hits jaw k: its point (k < J, the normal from the point to the centre) or
+    its facing (k - J, the facing's normal)."""
+    n_jaws = jaws.shape[0]
+    if k >= n_jaws:
+        return rebound(vel, w, st, i, jaws[k - n_jaws, 4], jaws[k - n_jaws, 5], p)
     dx = pos[i, 0] - jaws[k, 0]
     dy = pos[i, 1] - jaws[k, 1]
     d = _norm(dx, dy)

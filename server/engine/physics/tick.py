@@ -101,7 +101,8 @@ def run_tick(
             elif kind == EV_JAW:
                 speed = jaw(pos, vel, w, st, a, b, jaws, p)
                 if speed > 0.0:
-                    n_ev = _record(events, n_ev, now, EV_JAW, a, -1, speed, b)
+                    target = b if b < jaws.shape[0] else b - jaws.shape[0]
+                    n_ev = _record(events, n_ev, now, EV_JAW, a, -1, speed, target)
             else:
                 speed = pocket(pos, vel, w, st, pocket_of, a, b, centers)
                 n_ev = _record(events, n_ev, now, EV_POCKET, a, -1, speed, b)
