@@ -7,6 +7,7 @@ from __future__ import annotations
 from pydantic import BaseModel
 
 from server.engine import MAX_SPEED, MAX_TIP
+from server.engine.shot import DEFAULT_CUE_MASS_RATIO
 
 PROTOCOL_VERSION = 1
 MAX_ANGLE = 10.0  # radians; any direction fits in [-pi, pi], this only bounds junk
@@ -22,6 +23,9 @@ class Limits(BaseModel):
     max_angle: float = MAX_ANGLE
     max_name: int = MAX_NAME
     max_chat: int = MAX_CHAT
+    # Ball mass over the cue's end mass: how far side spin squirts the cue ball off the aim
+    # line, so the guide line shows the path the ball will really take.
+    cue_mass_ratio: float = DEFAULT_CUE_MASS_RATIO
 
 
 class StreamRates(BaseModel):

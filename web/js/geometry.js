@@ -340,3 +340,15 @@ export function clampTip(side, height, limit) {
   if (n <= limit || n === 0) return [side, height];
   return [(side * limit) / n, (height * limit) / n];
 }
+
+/**
+ * How far side spin turns the cue ball off the aim line (radians, positive to the left):
+ * the same formula as the server's `Shot.squirt` (Alciatore, TP A-31), with the server's
+ * cue mass ratio, so the guide shows the path the ball will take.
+ * @param {number} side tip offset, fraction of the radius (right > 0)
+ * @param {number} massRatio ball mass over the cue's end mass
+ */
+export function squirt(side, massRatio) {
+  const cos2 = 1 - side * side;
+  return Math.atan((2.5 * side * Math.sqrt(cos2)) / (1 + massRatio + 2.5 * cos2));
+}

@@ -12,7 +12,7 @@
  */
 
 import {
-  castGuide, pullPower, speedFromPower, placeCue, placementArea, pocketAt, dist, clampTip,
+  castGuide, squirt, pullPower, speedFromPower, placeCue, placementArea, pocketAt, dist, clampTip,
 } from './geometry.js';
 
 /**
@@ -177,13 +177,14 @@ export class AimController {
   }
 
   /**
-   * The guide for the current aim from `cue`.
+   * The guide for the current aim from `cue`, along the path side spin squirts it to.
    * @param {any} table
    * @param {{id: number, x: number, y: number}[]} balls
    * @param {[number, number]} cue
+   * @param {number} massRatio the server's `limits.cue_mass_ratio`
    */
-  guide(table, balls, cue) {
-    return castGuide(table, balls, cue, this.angle);
+  guide(table, balls, cue, massRatio) {
+    return castGuide(table, balls, cue, this.angle + squirt(this.tip[0], massRatio));
   }
 }
 

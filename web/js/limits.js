@@ -17,6 +17,7 @@
  * @property {number} max_angle |angle| of a shot or an aim, radians
  * @property {number} max_name characters of a player's name
  * @property {number} max_chat characters of a chat line
+ * @property {number} cue_mass_ratio ball mass over the cue's end mass (squirt)
  */
 
 /**
@@ -33,6 +34,7 @@ export const DEFAULT_LIMITS = Object.freeze({
   max_angle: 10.0,
   max_name: 24,
   max_chat: 200,
+  cue_mass_ratio: 30.0,
 });
 
 /** @type {Readonly<StreamPacing>} Stand-in until `welcome` or a match's `stream` arrives. */

@@ -2,7 +2,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
   makeView, castGuide, rayCircle, rayCushion, placementArea, placeCue, pocketAt, pullPower,
-  speedFromPower, clampTip, MIN_SPEED,
+  speedFromPower, clampTip, squirt, MIN_SPEED,
 } from '../js/geometry.js';
 
 import { TABLE } from './fixtures.mjs';
@@ -155,4 +155,12 @@ test('a portrait canvas stands the table on end, head at the top, and maps back 
   // A shot along +x (towards the foot) points down the screen.
   close(v.screenAngle(0), Math.PI / 2);
   assert.equal(makeView(TABLE, 900, 400).rotated, false);
+});
+
+test('the guide squirts like the server: Shot(…, tip=(x, 0)).squirt() with a ratio of 30', () => {
+  // Values printed by the server's `Shot.squirt` for these side offsets.
+  const server = [[0.1, 0.007430688007873146], [0.3, 0.021497946780529575],
+    [0.5, 0.03291682876785524], [-0.5, -0.03291682876785524], [0, 0]];
+  for (const [side, angle] of server) assert.ok(Math.abs(squirt(side, 30) - angle) < 1e-12);
+  assert.ok(squirt(0.5, 60) < squirt(0.5, 30)); // a heavier tip end squirts more
 });

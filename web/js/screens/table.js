@@ -9,7 +9,7 @@
 import { api, RoomSocket, memory } from '../net.js';
 import { initialState, reduce, setConnection, isMyTurn } from '../state.js';
 import { ShotPlayback } from '../playback.js';
-import { placementArea, clampTip, castGuide } from '../geometry.js';
+import { placementArea, clampTip, castGuide, squirt } from '../geometry.js';
 import { CELS } from '../sprites.js';
 import {
   drawBalls, drawGuide, drawCue, drawPlacement, drawPocketCall, drawPowerMeter, drawSinking,
@@ -265,12 +265,13 @@ export function startTable(roomId) {
     const cue = placing ? [placing.x, placing.y] : sit.cue;
     if (state.phase === 'aiming' && cue && aim.mode !== 'placing') {
       if (sit.myTurn) {
-        drawGuide(ctx, view, table, cue, aim.guide(table, sit.balls, cue));
+        drawGuide(ctx, view, table, cue, aim.guide(table, sit.balls, cue, limits.cue_mass_ratio));
         drawCue(ctx, view, table, cue, aim.angle, aim.power);
         if (aim.mode === 'pulling') drawPowerMeter(ctx, view, cue, aim.power);
       } else if (state.aim && state.aim.seat !== state.me.seat
                  && now - state.aim.at < REMOTE_AIM_TTL) {
-        drawGuide(ctx, view, table, cue, castGuide(table, sit.balls, cue, state.aim.angle));
+        const path = state.aim.angle + squirt(state.aim.tip[0] ?? 0, limits.cue_mass_ratio);
+        drawGuide(ctx, view, table, cue, castGuide(table, sit.balls, cue, path));
         drawCue(ctx, view, table, cue, state.aim.angle, state.aim.power, 0.85);
         if (state.aim.power > 0) drawPowerMeter(ctx, view, cue, state.aim.power);
       }
