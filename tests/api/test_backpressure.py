@@ -12,7 +12,9 @@ import threading
 import pytest
 from starlette.websockets import WebSocketDisconnect
 
-from .conftest import BREAK, connect, greet, make_client, receive_until, seated_room
+from tests.support.games import BREAK_MESSAGE
+from tests.support.messages import drain_presence, greet, receive_until
+from tests.support.rooms import connect, make_client, seated_room
 
 pytestmark = pytest.mark.timeout(60)
 
@@ -30,16 +32,18 @@ async def _never_returns(text: str) -> None:
 def test_spectator_that_never_reads_does_not_slow_the_players(settings):
     with make_client(settings, send_timeout=0.5) as client:
         room_id, ta, tb = seated_room(client)
-        with connect(client, room_id, ta) as a, connect(client, room_id, tb) as b, \
-                connect(client, room_id) as s:
+        with (
+            connect(client, room_id, ta) as a,
+            connect(client, room_id, tb) as b,
+            connect(client, room_id) as s,
+        ):
             for ws in (a, b, s):
                 greet(ws)
             live, stuck = spectator_connection(client, room_id)
             stuck.send_text = _never_returns
-            for ws, pending in ((a, 2), (b, 1)):  # the later arrivals' presence
-                for _ in range(pending):
-                    assert ws.receive_json()["type"] == "presence"
-            a.send_json(BREAK)
+            drain_presence(a, 2)  # the later arrivals' presence
+            drain_presence(b, 1)
+            a.send_json(BREAK_MESSAGE)
             streams = [receive_until(ws, "state") for ws in (a, b)]
             assert streams[0] == streams[1]
             seqs = [m["seq"] for m in streams[0]]
@@ -57,8 +61,9 @@ def test_slow_spectator_has_stale_frames_skipped_but_keeps_what_matters(settings
     # The spectator takes nothing until the players have seen the whole shot: its outbox
     # (100) overflows with hundreds of frames (one every 2 ticks), and the events (a few
     # dozen) must all survive.
-    with make_client(settings, send_queue=100, send_timeout=30.0, pace=2.0, frame_every=2,
-                     frames_per_message=1) as client:
+    with make_client(
+        settings, send_queue=100, send_timeout=30.0, pace=2.0, frame_every=2, frames_per_message=1
+    ) as client:
         room_id, ta, _ = seated_room(client)
         with connect(client, room_id, ta) as a, connect(client, room_id) as s:
             greet(a)
@@ -68,13 +73,12 @@ def test_slow_spectator_has_stale_frames_skipped_but_keeps_what_matters(settings
             released = threading.Event()
 
             async def held(text: str) -> None:
-                while not released.is_set():
-                    await asyncio.sleep(0.01)
+                assert await asyncio.to_thread(released.wait, 30)  # until the test says
                 await fast_send(text)
 
             slow.send_text = held
             receive_until(a, "presence")
-            a.send_json(BREAK)
+            a.send_json(BREAK_MESSAGE)
             player = receive_until(a, "state")
             released.set()
             watcher = receive_until(s, "state")

@@ -11,9 +11,15 @@ from server.config import Settings, SettingsError
 
 
 def test_overrides_are_typed_like_the_defaults():
-    settings = Settings.from_env({"POOL_GRACE": "5", "POOL_SEND_QUEUE": "10",
-                                  "POOL_ALLOWED_ORIGINS": "https://a.example, https://b.example",
-                                  "POOL_WS_DEFLATE": "1", "UNRELATED": "x"})
+    settings = Settings.from_env(
+        {
+            "POOL_GRACE": "5",
+            "POOL_SEND_QUEUE": "10",
+            "POOL_ALLOWED_ORIGINS": "https://a.example, https://b.example",
+            "POOL_WS_DEFLATE": "1",
+            "UNRELATED": "x",
+        }
+    )
     assert settings.grace == 5.0 and settings.send_queue == 10
     assert settings.allowed_origins == ("https://a.example", "https://b.example")
     assert settings.ws_deflate is True
@@ -29,11 +35,19 @@ def test_the_database_path_is_a_setting_with_its_older_name_kept():
     assert Settings.from_env({"DB_PATH": "/x.db"}).db_path == Path("billiards.db")  # no prefix
 
 
-@pytest.mark.parametrize(("variable", "value"), [
-    ("POOL_FRAME_EVERY", "0"), ("POOL_FRAMES_PER_MESSAGE", "-1"), ("POOL_GRACE", "abc"),
-    ("POOL_SEND_QUEUE", "1e9"), ("POOL_PACE", "0"), ("POOL_WS_DEFLATE", "maybe"),
-    ("POOL_MAX_ROOMS", "0"), ("POOL_RATE_PER_SECOND", "nan"),
-])
+@pytest.mark.parametrize(
+    ("variable", "value"),
+    [
+        ("POOL_FRAME_EVERY", "0"),
+        ("POOL_FRAMES_PER_MESSAGE", "-1"),
+        ("POOL_GRACE", "abc"),
+        ("POOL_SEND_QUEUE", "1e9"),
+        ("POOL_PACE", "0"),
+        ("POOL_WS_DEFLATE", "maybe"),
+        ("POOL_MAX_ROOMS", "0"),
+        ("POOL_RATE_PER_SECOND", "nan"),
+    ],
+)
 def test_a_bad_value_is_refused_with_the_variable_named(variable: str, value: str):
     with pytest.raises(SettingsError) as caught:
         Settings.from_env({variable: value})
@@ -55,8 +69,9 @@ def test_replace_validates_and_settings_are_frozen():
         settings.pace = 5.0  # type: ignore[misc]
 
 
-def test_the_server_command_names_a_bad_variable(monkeypatch: pytest.MonkeyPatch,
-                                                 capsys: pytest.CaptureFixture[str]):
+def test_the_server_command_names_a_bad_variable(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+):
     from server.__main__ import main
 
     monkeypatch.setenv("POOL_FRAME_EVERY", "0")

@@ -17,8 +17,11 @@ from server.protocol.plan import frame_rows, plan_shot
 def reference(shot_id, ticks, ids, mm, cels, on_table, last) -> list[str]:
     out = []
     for j, tick in enumerate(ticks.tolist()):
-        rows = [[int(i), int(mm[j, b, 0]), int(mm[j, b, 1]), int(cels[j, b])]
-                for b, i in enumerate(ids.tolist()) if on_table[j, b]]
+        rows = [
+            [int(i), int(mm[j, b, 0]), int(mm[j, b, 1]), int(cels[j, b])]
+            for b, i in enumerate(ids.tolist())
+            if on_table[j, b]
+        ]
         payload = {"shot": shot_id, "tick": tick, "b": rows}
         if j == last:
             payload["last"] = True
@@ -63,20 +66,32 @@ def test_a_real_shot_streams_the_rows_of_its_ticks():
 
 
 @settings(max_examples=300)
-@given(shot_id=st.integers(0, 10**6), tick=st.integers(0, 36_000),
-       time=st.floats(0, 300, allow_nan=False), speed=st.floats(0, 20, allow_nan=False),
-       kind=st.sampled_from(["strike", "ball", "cushion", "jaw", "pocket"]),
-       ids=st.lists(st.integers(0, 15), min_size=1, max_size=2),
-       target=st.integers(-1, 40))
+@given(
+    shot_id=st.integers(0, 10**6),
+    tick=st.integers(0, 36_000),
+    time=st.floats(0, 300, allow_nan=False),
+    speed=st.floats(0, 20, allow_nan=False),
+    kind=st.sampled_from(["strike", "ball", "cushion", "jaw", "pocket"]),
+    ids=st.lists(st.integers(0, 15), min_size=1, max_size=2),
+    target=st.integers(-1, 40),
+)
 def test_event_text_is_what_json_dumps_gives(shot_id, tick, time, speed, kind, ids, target):
-    from server.engine import Event
     from server.codec import encode
+    from server.engine import Event
     from server.protocol.plan import event_body
 
     event = Event(time, kind, tuple(ids), speed, target)
     assert event_body(shot_id, tick, event) == encode(
-        {"shot": shot_id, "tick": tick, "t": round(time, 4), "kind": kind, "ids": ids,
-         "speed": round(speed, 3), "target": target})
+        {
+            "shot": shot_id,
+            "tick": tick,
+            "t": round(time, 4),
+            "kind": kind,
+            "ids": ids,
+            "speed": round(speed, 3),
+            "target": target,
+        }
+    )
 
 
 def test_an_event_that_is_not_finite_is_refused():
@@ -101,7 +116,8 @@ def test_sounds_close_together_share_a_message_and_none_is_lost():
     flat = [e for m in messages for e in [m, *m.get("also", ())]]
     chosen = _sounds(result.events, result.frames.tick)
     assert [(e["tick"], e["kind"], e["t"]) for e in flat] == [
-        (tick, ev.kind, round(ev.time, 4)) for tick, ev in chosen]
+        (tick, ev.kind, round(ev.time, 4)) for tick, ev in chosen
+    ]
     assert len(messages) < len(flat) / 2
     window = 6 * 4 * result.frames.tick
     for m in messages:

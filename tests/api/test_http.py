@@ -5,8 +5,19 @@ from __future__ import annotations
 import re
 
 import pytest
+from fastapi.testclient import TestClient
 
-from .conftest import create_room, join
+from server.rooms.clock import ManualClock
+from tests.support.games import BREAK_MESSAGE
+from tests.support.messages import greet, receive_until
+from tests.support.rooms import (
+    app_with,
+    connect,
+    create_room,
+    join,
+    make_client,
+    seated_room,
+)
 
 pytestmark = pytest.mark.timeout(60)
 
@@ -16,62 +27,86 @@ def test_health(client):
 
 
 def test_create_room_returns_short_unguessable_id(client):
-    response = client.post("/api/rooms", json={"game": "nine_ball", "race_to": 5,
-                                               "shot_clock": 30})
+    response = client.post("/api/rooms", json={"game": "nine_ball", "race_to": 5, "shot_clock": 30})
     assert response.status_code == 201
     body = response.json()
     assert re.fullmatch(r"[A-Za-z0-9_-]{12}", body["room_id"])
     assert body | {"room_id": "x", "url": "x"} == {
-        "room_id": "x", "url": "x", "game": "nine_ball", "race_to": 5, "shot_clock": 30.0,
-        "seats": 2}
+        "room_id": "x",
+        "url": "x",
+        "game": "nine_ball",
+        "race_to": 5,
+        "shot_clock": 30.0,
+        "seats": 2,
+    }
     assert body["url"] == f"/r/{body['room_id']}"
     assert create_room(client) != create_room(client)
 
 
-@pytest.mark.parametrize("body", [
-    {"game": "snooker"}, {"race_to": 3}, {"game": "eight_ball", "race_to": 0},
-    {"game": "eight_ball", "race_to": 16}, {"game": "eight_ball", "race_to": "three"},
-    {"game": "eight_ball", "shot_clock": -1}, {"game": "eight_ball", "shot_clock": 601},
-    {"game": "eight_ball", "colour": "red"},
-])
+@pytest.mark.parametrize(
+    "body",
+    [
+        {"game": "snooker"},
+        {"race_to": 3},
+        {"game": "eight_ball", "race_to": 0},
+        {"game": "eight_ball", "race_to": 16},
+        {"game": "eight_ball", "race_to": "three"},
+        {"game": "eight_ball", "shot_clock": -1},
+        {"game": "eight_ball", "shot_clock": 601},
+        {"game": "eight_ball", "colour": "red"},
+    ],
+)
 def test_create_room_refuses_bad_bodies(client, body):
     assert client.post("/api/rooms", json=body).status_code == 422
     assert client.get("/api/rooms").json() == {"rooms": []}
 
 
 def test_shot_clock_below_minimum_is_refused(settings):
-    from .conftest import make_client
-
     with make_client(settings, min_shot_clock=5.0) as c:
         response = c.post("/api/rooms", json={"game": "eight_ball", "shot_clock": 2})
         assert response.status_code == 422
         assert response.json()["detail"]["code"] == "bad_shot_clock"
-        assert c.post("/api/rooms", json={"game": "eight_ball", "shot_clock": 0}) \
-            .status_code == 201
+        assert c.post("/api/rooms", json={"game": "eight_ball", "shot_clock": 0}).status_code == 201
 
 
-def test_list_rooms_shows_game_status_players_and_spectators(client):
-    waiting = create_room(client, "eight_ball", race_to=3)
-    join(client, waiting, "Ana")
-    practice = create_room(client, "practice")
-    join(client, practice, "Pia")
-    full = create_room(client, "nine_ball")
-    join(client, full, "Ana")
-    join(client, full, "Ben")
-    with client.websocket_connect(f"/ws/rooms/{full}") as spectator:
-        spectator.receive_json()
-        rooms = {r["room_id"]: r for r in client.get("/api/rooms").json()["rooms"]}
+def test_list_rooms_shows_game_status_players_and_spectators(settings):
+    clock = ManualClock(now=1_767_000_000.0)
+    with TestClient(app_with(settings, clock=clock.clock)) as client:
+        waiting = create_room(client, "eight_ball", race_to=3)
+        join(client, waiting, "Ana")
+        clock.advance(1.5)
+        practice = create_room(client, "practice")
+        join(client, practice, "Pia")
+        clock.advance(1.5)
+        full = create_room(client, "nine_ball")
+        join(client, full, "Ana")
+        join(client, full, "Ben")
+        with client.websocket_connect(f"/ws/rooms/{full}") as spectator:
+            spectator.receive_json()
+            listing = client.get("/api/rooms").json()["rooms"]
+    assert [r["room_id"] for r in listing] == [full, practice, waiting]  # newest first
+    rooms = {r["room_id"]: r for r in listing}
     assert rooms[waiting]["status"] == "waiting"
     assert rooms[waiting]["players"] == ["Ana", None]
     assert rooms[waiting]["race_to"] == 3
-    assert {k: v for k, v in rooms[practice].items() if k not in ("created_at", "score")} == {
-        "room_id": practice, "game": "practice", "race_to": 1, "shot_clock": 0.0, "seats": 1,
-        "status": "playing", "players": ["Pia"], "spectators": 0}
+    assert rooms[waiting]["score"] is None
+    assert rooms[practice] == {
+        "room_id": practice,
+        "game": "practice",
+        "race_to": 1,
+        "shot_clock": 0.0,
+        "seats": 1,
+        "status": "playing",
+        "players": ["Pia"],
+        "spectators": 0,
+        "score": [0],
+        "created_at": 1_767_000_001.5,
+    }
     assert rooms[full]["status"] == "playing"
     assert rooms[full]["players"] == ["Ana", "Ben"]
     assert rooms[full]["spectators"] == 1
     assert rooms[full]["score"] == [0, 0]
-    assert client.get("/api/rooms").json()["rooms"][0]["room_id"] == full  # newest first
+    assert [r["created_at"] for r in listing] == [1_767_000_003.0, 1_767_000_001.5, 1_767_000_000.0]
 
 
 def test_show_room_and_unknown_room(client):
@@ -129,8 +164,9 @@ def test_tokens_are_stored_only_as_hashes(client):
 
 def test_openapi_documents_the_endpoints(client):
     paths = client.get("/openapi.json").json()["paths"]
-    assert {"/health", "/api/rooms", "/api/rooms/{room_id}",
-            "/api/rooms/{room_id}/join"} <= set(paths)
+    assert {"/health", "/api/rooms", "/api/rooms/{room_id}", "/api/rooms/{room_id}/join"} <= set(
+        paths
+    )
 
 
 def test_web_client_is_served_at_root_and_room_links(client):
@@ -146,8 +182,6 @@ def test_web_client_is_served_at_root_and_room_links(client):
 
 
 def test_stats_report_rooms_connections_and_frame_lateness(settings):
-    from .conftest import BREAK, connect, greet, make_client, receive_until, seated_room
-
     with make_client(settings, pace=4.0) as client:
         empty = client.get("/api/stats").json()
         assert empty["rooms"] == 0 and empty["stream"]["frames"] == 0
@@ -156,7 +190,7 @@ def test_stats_report_rooms_connections_and_frame_lateness(settings):
         room_id, ta, _ = seated_room(client)
         with connect(client, room_id, ta) as a:
             greet(a)
-            a.send_json(BREAK)
+            a.send_json(BREAK_MESSAGE)
             frames = [m for m in receive_until(a, "state") if m["type"] == "frame"]
             stats = client.get("/api/stats", params={"window": 60}).json()
         assert stats["rooms"] == 1 and stats["connections"] == 1

@@ -7,53 +7,30 @@ a browser sees it (HTTP 403), a player dropping mid-shot and reconnecting, wall-
 from __future__ import annotations
 
 import asyncio
-import json
 import time
-from contextlib import AbstractContextManager
 
-import httpx
 import pytest
 import websockets
 from websockets.exceptions import ConnectionClosed, InvalidStatus
 
-from server.app import create_app
-from server.embedded import bound_socket, serving
+from tests.support.games import (
+    BREAK_MESSAGE,
+    EIGHT_BALL_BREAK_BALL,
+    EIGHT_BALL_SCRATCH,
+    shoot_message,
+)
+from tests.support.live import greet, http, live_server, recv, send, until
+from tests.support.rooms import create_room, seated_room
 
 pytestmark = pytest.mark.timeout(120)
 
 
-def live_server(settings) -> AbstractContextManager[str]:
-    return serving(create_app(settings), settings, bound_socket())
-
-
-async def recv(ws) -> dict:
-    return json.loads(await asyncio.wait_for(ws.recv(), 20))
-
-
-async def until(ws, kind: str) -> list[dict]:
-    out = []
-    while True:
-        out.append(await recv(ws))
-        if out[-1]["type"] == kind:
-            return out
-
-
-async def greet(ws) -> tuple[dict, dict]:
-    welcome, state, presence = await recv(ws), await recv(ws), await recv(ws)
-    assert (welcome["type"], state["type"], presence["type"]) == ("welcome", "state",
-                                                                 "presence")
-    return welcome, state
-
-
-async def play(address: str) -> None:
-    async with httpx.AsyncClient(base_url=f"http://{address}") as http:
-        room_id = (await http.post("/api/rooms", json={"game": "eight_ball"})).json()["room_id"]
-        tokens = [(await http.post(f"/api/rooms/{room_id}/join", json={"name": n})).json()
-                  ["token"] for n in ("Ana", "Ben")]
+async def play(address: str, room_id: str, tokens: list[str]) -> None:
+    """The 8-ball game of `games.EIGHT_BALL`: the break pockets a ball, Ana plays again and
+    scratches."""
     url = f"ws://{address}/ws/rooms/{room_id}"
     with pytest.raises(InvalidStatus) as refused:  # a foreign page is refused at handshake
-        async with websockets.connect(f"{url}?token={tokens[0]}",
-                                      origin="http://evil.example"):
+        async with websockets.connect(f"{url}?token={tokens[0]}", origin="http://evil.example"):
             pass
     assert refused.value.response.status_code == 403
 
@@ -68,7 +45,7 @@ async def play(address: str) -> None:
         await until(b, "presence")
 
         # the break, streamed in real time; Ben drops mid-shot and comes back
-        await a.send(json.dumps({"type": "shoot", "angle": 0.0, "speed": 9.0}))
+        await send(a, BREAK_MESSAGE)
         strike_seen = None
         while True:
             message = await recv(b)
@@ -86,6 +63,7 @@ async def play(address: str) -> None:
         assert frames[0]["tick"] > state["shot"]["tick"]
         assert frames[-1]["tick"] == state["shot"]["ticks"] and frames[-1]["last"]
         assert resumed[-2]["type"] == "shot_result"
+        assert resumed[-2]["outcome"]["pocketed"] == [EIGHT_BALL_BREAK_BALL]
         watched = time.monotonic() - strike_seen
         assert watched >= 0.9 * state["shot"]["ticks"] / 120  # paced, not dumped
 
@@ -94,20 +72,18 @@ async def play(address: str) -> None:
         assert spectator_view[-1]["match"] == player_view[-1]["match"] == resumed[-1]["match"]
         assert sum(m["type"] == "shot_result" for m in player_view) == 1
 
-        # the next shot, by whoever's turn it is
-        state = resumed[-1]
-        turn = state["match"]["turn"]
-        shooter = (a, b)[turn]
-        if not any(row[0] == 0 for row in state["balls"]):  # scratched: ball in hand
-            await shooter.send(json.dumps({"type": "place_cue", "x": 0.4, "y": 0.635}))
-            await until(shooter, "state")
-        await shooter.send(json.dumps({"type": "shoot", "angle": 2.0, "speed": 1.5}))
+        # Ana again: her shot touches nothing and the cue ball drops, Ben has ball in hand
+        assert resumed[-1]["match"]["turn"] == 0
+        await send(a, shoot_message(EIGHT_BALL_SCRATCH))
         second = await until(s, "state")
         result = [m for m in second if m["type"] == "shot_result"][0]
-        assert result["shot"] == 2 and result["outcome"]["shooter"] == turn
+        assert result["shot"] == 2 and result["outcome"]["shooter"] == 0
+        assert [f["code"] for f in result["outcome"]["fouls"]] == ["no_contact", "scratch"]
+        assert second[-1]["match"]["turn"] == 1
+        assert second[-1]["match"]["ball_in_hand"] == "anywhere"
 
         # a frame over 16 KiB: uvicorn closes with 1009
-        await a.send(json.dumps({"type": "chat", "text": "x" * (20 * 1024)}))
+        await send(a, {"type": "chat", "text": "x" * (20 * 1024)})
         with pytest.raises(ConnectionClosed) as closed:
             while True:
                 await recv(a)
@@ -118,25 +94,26 @@ async def play(address: str) -> None:
 
 
 def test_real_server_plays_shots_with_reconnection_mid_shot(settings):
-    with live_server(settings.replace(pace=1.0)) as address:
-        asyncio.run(play(address))
+    with live_server(settings.replace(pace=1.0)) as address, http(address) as client:
+        room_id, ta, tb = seated_room(client)
+        asyncio.run(play(address, room_id, [ta, tb]))
 
 
-async def spectate_offering_deflate(address: str) -> tuple[str | None, dict]:
+async def spectate_offering_deflate(address: str, room_id: str) -> tuple[str | None, dict]:
     """A spectator that offers permessage-deflate, as browsers do: the extensions the server
     accepted, and the `state` it then read."""
-    async with httpx.AsyncClient(base_url=f"http://{address}") as http:
-        room_id = (await http.post("/api/rooms", json={"game": "practice"})).json()["room_id"]
-    async with websockets.connect(f"ws://{address}/ws/rooms/{room_id}",
-                                  compression="deflate") as ws:
+    async with websockets.connect(
+        f"ws://{address}/ws/rooms/{room_id}", compression="deflate"
+    ) as ws:
         _, state = await greet(ws)
         return ws.response.headers.get("Sec-WebSocket-Extensions"), state
 
 
 @pytest.mark.parametrize("deflate", [False, True])
 def test_permessage_deflate_is_accepted_only_when_enabled(settings, deflate):
-    with live_server(settings.replace(ws_deflate=deflate)) as address:
-        extensions, state = asyncio.run(spectate_offering_deflate(address))
+    with live_server(settings.replace(ws_deflate=deflate)) as address, http(address) as client:
+        room_id = create_room(client, "practice")
+        extensions, state = asyncio.run(spectate_offering_deflate(address, room_id))
     assert ("permessage-deflate" in (extensions or "")) is deflate
     assert state["room"]["game"] == "practice"
     assert state["table"]["length"] == pytest.approx(2.54)

@@ -10,8 +10,9 @@ import pytest
 from server.engine import Shot, Table, rack
 from server.rooms.prepare import prepare_shot
 from server.rooms.shot_runner import ShotRunner
-
-from .conftest import BREAK, connect, greet, make_client, receive_until, seated_room
+from tests.support.games import BREAK_MESSAGE, EIGHT_BALL_BREAK_BALL, eight_ball_break_ticks
+from tests.support.messages import greet, receive_until
+from tests.support.rooms import connect, make_client, seated_room
 
 pytestmark = pytest.mark.timeout(120)
 
@@ -31,8 +32,9 @@ def test_a_worker_process_gives_the_same_result_and_messages():
 
     result, plan = asyncio.run(in_worker())
     here, here_plan = prepare_shot(table, balls, shot, 5, 6, 2)
-    assert [(m.at, m.kind, m.body, m.droppable, m.tick) for m in plan] == \
-        [(m.at, m.kind, m.body, m.droppable, m.tick) for m in here_plan]
+    assert [(m.at, m.kind, m.body, m.droppable, m.tick) for m in plan] == [
+        (m.at, m.kind, m.body, m.droppable, m.tick) for m in here_plan
+    ]
     assert result.events == here.events
     assert np.array_equal(result.final.positions, here.final.positions)
     assert np.array_equal(result.frames.positions, here.frames.positions)
@@ -43,9 +45,10 @@ def test_a_room_streams_a_break_simulated_in_the_worker(settings):
         room_id, ta, _ = seated_room(client)
         with connect(client, room_id, ta) as a:
             greet(a)
-            a.send_json(BREAK)
+            a.send_json(BREAK_MESSAGE)
             stream = receive_until(a, "state")
     frames = [m for m in stream if m["type"] == "frame"]
     assert stream[0]["type"] == "event" and stream[0]["kind"] == "strike"
-    assert len(frames) > 10 and frames[-1]["last"] is True
+    assert frames[-1]["tick"] == eight_ball_break_ticks() and frames[-1]["last"] is True
     assert stream[-2]["type"] == "shot_result"
+    assert stream[-2]["outcome"]["pocketed"] == [EIGHT_BALL_BREAK_BALL]

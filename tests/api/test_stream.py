@@ -4,30 +4,23 @@ from __future__ import annotations
 
 import pytest
 
-from server.protocol.outbound import server_messages
-
-from .conftest import (
-    BREAK,
-    connect,
+from tests.support.games import (
+    BREAK_MESSAGE,
+    EIGHT_BALL_BREAK_BALL,
+    EIGHT_BALL_BREAK_SAYS,
+    eight_ball_break_ticks,
+)
+from tests.support.messages import (
+    assert_valid,
+    drain_presence,
     flat_events,
     flat_frames,
     greet,
-    make_client,
     receive_until,
-    seated_room,
 )
+from tests.support.rooms import connect, make_client, seated_room
 
 pytestmark = pytest.mark.timeout(120)
-
-def drain_presence(ws, count: int) -> None:
-    for _ in range(count):
-        assert ws.receive_json()["type"] == "presence"
-
-
-def check_models(messages: list[dict]) -> None:
-    for m in messages:
-        assert type(server_messages.validate_python(m)).__name__.lower().startswith(
-            m["type"].replace("_", "")[:4])
 
 
 def test_break_is_streamed_to_both_players_and_a_spectator(settings):
@@ -40,8 +33,11 @@ def test_break_is_streamed_to_both_players_and_a_spectator(settings):
 
 def _break_streamed(client) -> list[dict]:
     room_id, ta, tb = seated_room(client)
-    with connect(client, room_id, ta) as a, connect(client, room_id, tb) as b, \
-            connect(client, room_id) as s:
+    with (
+        connect(client, room_id, ta) as a,
+        connect(client, room_id, tb) as b,
+        connect(client, room_id) as s,
+    ):
         welcomes = []
         for ws, pending in ((a, 2), (b, 1), (s, 0)):
             welcome, state = greet(ws)
@@ -51,14 +47,14 @@ def _break_streamed(client) -> list[dict]:
         assert welcomes[2]["role"] == "spectator"
         assert state["phase"] == "aiming" and state["match"]["turn"] == 0
 
-        a.send_json(BREAK)
+        a.send_json(BREAK_MESSAGE)
         streams = [receive_until(ws, "state") for ws in (a, b, s)]
     assert streams[0] == streams[1] == streams[2]  # everyone sees the same stream
     return streams[0]
 
 
 def _check_break_stream(stream: list[dict]) -> None:
-    check_models(stream)
+    assert_valid(stream)
     seqs = [m["seq"] for m in stream]
     assert seqs == list(range(seqs[0], seqs[0] + len(seqs)))  # no gaps
     assert [m["type"] for m in stream[-2:]] == ["shot_result", "state"]
@@ -73,7 +69,7 @@ def _check_break_stream(stream: list[dict]) -> None:
     assert ticks == sorted(set(ticks)) and ticks[:2] == [6, 12]
     assert all(t % 6 == 0 for t in ticks[:-1])  # every 6th tick (a late loop skips some)
     assert frames[-1].get("last") is True and all("last" not in f for f in frames[:-1])
-    assert len(frames) >= 50  # a break rolls for seconds: 20 frames per second
+    assert frames[-1]["tick"] == eight_ball_break_ticks()
     for frame in frames:
         for ball_id, x, y, cel in frame["b"]:
             assert 0 <= ball_id <= 15 and 0 <= cel < 16
@@ -99,16 +95,18 @@ def _check_break_stream(stream: list[dict]) -> None:
     result, state = stream[-2], stream[-1]
     outcome = result["outcome"]
     assert result["shot"] == 1 and result["cause"] == "shot"
-    assert outcome["shooter"] == 0 and isinstance(outcome["message"], str)
+    assert (outcome["shooter"], outcome["pocketed"], outcome["fouls"]) == (
+        0,
+        [EIGHT_BALL_BREAK_BALL],
+        [],
+    )
+    assert outcome["continues"] and outcome["next_turn"] == 0 and outcome["spotted"] == []
+    assert outcome["message"] == EIGHT_BALL_BREAK_SAYS
     assert state["phase"] == "aiming" and state["shot"] is None
-    assert state["match"]["turn"] == outcome["next_turn"]
-    last = {row[0]: row for row in frames[-1]["b"]}
-    moved_by_rules = set(outcome["spotted"]) | {0}
-    for row in state["balls"]:
-        if row[0] not in moved_by_rules:
-            assert last[row[0]] == row  # the state shows the table where the stream ended
-    pocketed = {e["ids"][0] for e in events if e["kind"] == "pocket"}
-    assert set(outcome["pocketed"]) == pocketed
+    assert state["match"]["turn"] == 0 and state["match"]["breaking"] is False
+    assert [e["ids"] for e in events if e["kind"] == "pocket"] == [[EIGHT_BALL_BREAK_BALL]]
+    assert len(frames[-1]["b"]) == len(state["balls"]) == 15
+    assert sorted(state["balls"]) == sorted(frames[-1]["b"])  # where the stream ended
 
 
 def test_member_joining_mid_shot_gets_state_and_joins_the_stream(settings):
@@ -116,7 +114,7 @@ def test_member_joining_mid_shot_gets_state_and_joins_the_stream(settings):
         room_id, ta, _ = seated_room(client)
         with connect(client, room_id, ta) as a:
             greet(a)
-            a.send_json(BREAK)
+            a.send_json(BREAK_MESSAGE)
             for _ in range(1000):
                 message = a.receive_json()
                 if message["type"] == "frame" and message["tick"] >= 60:
@@ -125,10 +123,12 @@ def test_member_joining_mid_shot_gets_state_and_joins_the_stream(settings):
                 welcome, state = greet(s)
                 assert state["phase"] == "rolling"
                 assert state["shot"]["id"] == 1 and state["shot"]["seat"] == 0
-                assert state["shot"]["tick"] >= 60
-                assert state["shot"]["ticks"] > state["shot"]["tick"]
+                assert (
+                    60 <= state["shot"]["tick"] < state["shot"]["ticks"] == eight_ball_break_ticks()
+                )
                 assert state["match"]["turn"] == 0  # the match as it was at the strike
-                assert len(state["balls"]) >= 10
+                assert state["match"]["balls"][EIGHT_BALL_BREAK_BALL]["on_table"]
+                assert 10 <= len(state["balls"]) <= 16
                 assert state["seq"] == welcome["seq"]
                 rest = receive_until(s, "state")
             seqs = [m["seq"] for m in rest]
@@ -144,7 +144,7 @@ def test_rest_state_is_the_same_over_http_and_websocket(client):
     room_id, ta, _ = seated_room(client)
     with connect(client, room_id, ta) as a:
         greet(a)
-        a.send_json(BREAK)
+        a.send_json(BREAK_MESSAGE)
         final = receive_until(a, "state")[-1]
         http_state = client.get(f"/api/rooms/{room_id}").json()["state"]
     assert http_state["balls"] == final["balls"]
@@ -171,7 +171,7 @@ def test_a_late_room_skips_stale_frames_but_never_events_or_the_last_frame(setti
         live.room.show = stall_once
         with connect(client, room_id, ta) as a:
             greet(a)
-            a.send_json(BREAK)
+            a.send_json(BREAK_MESSAGE)
             stream = receive_until(a, "state")
     seqs = [m["seq"] for m in stream]
     assert seqs == list(range(seqs[0], seqs[0] + len(seqs)))

@@ -1,7 +1,8 @@
 """Fixtures for the browser tests: a real server on a free port and Debian's Chromium.
 
 The server runs `server.app:create_app()` under uvicorn in a thread (127.0.0.1, port 0),
-with shots paced twice as fast as real time so the break takes a few seconds to watch.
+with shots paced twice as fast as real time so the break takes a few seconds to watch. Every
+room gets the 8-ball rack of `tests.support.games.EIGHT_BALL`: the same game every run.
 """
 
 from __future__ import annotations
@@ -12,10 +13,10 @@ from pathlib import Path
 import pytest
 from playwright.sync_api import Browser, BrowserContext, Page, sync_playwright
 
-from server.app import create_app
 from server.config import Settings
-from server.embedded import bound_socket, serving
 from server.engine import Shot, Table, rack, simulate
+from tests.support.games import EIGHT_BALL
+from tests.support.live import live_server
 
 ARTIFACTS = Path(__file__).resolve().parents[2] / "artifacts"
 CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking"]
@@ -28,7 +29,7 @@ def base_url(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
     table = Table.pool("9ft")
     simulate(table, rack("eight_ball", table), Shot(0.0, 1.0))
     settings = E2E_SETTINGS.replace(db_path=tmp_path_factory.mktemp("e2e") / "billiards.db")
-    with serving(create_app(settings), settings, bound_socket()) as address:
+    with live_server(settings, EIGHT_BALL) as address:
         yield f"http://{address}"
 
 

@@ -4,69 +4,41 @@ pause, previous/next and speed; an unknown match says so. Real Chromium, real se
 
 from __future__ import annotations
 
-import json
 from urllib.parse import urlparse
-from urllib.request import Request, urlopen
 
 from playwright.sync_api import expect
 from websockets.sync.client import connect
 
-SHOTS = [{"type": "shoot", "angle": 0.0, "speed": 9.0},
-         {"type": "shoot", "angle": 2.2, "speed": 2.5}]
+from tests.support.games import BREAK, EIGHT_BALL_BREAK_BALL, EIGHT_BALL_SCRATCH
+from tests.support.live import http, ws_url
+from tests.support.messages import JsonSocket, receive_until
+from tests.support.rooms import play_shot, seated_room
+
+SHOTS = [BREAK, EIGHT_BALL_SCRATCH]
 REPLAY_READY = "window.__replay && window.__replay.ready && window.__replay.match"
 
 
-def _http(base_url: str, method: str, path: str, body: dict | None = None) -> dict:
-    data = None if body is None else json.dumps(body).encode()
-    req = Request(base_url + path, data=data, method=method,
-                  headers={"content-type": "application/json"})
-    with urlopen(req, timeout=10) as reply:
-        return json.loads(reply.read())
-
-
-def _until(ws, kind: str) -> list[dict]:
-    seen = []
-    while True:
-        seen.append(json.loads(ws.recv(timeout=30)))
-        if seen[-1]["type"] == kind:
-            return seen
-
-
 def play_a_short_match(base_url: str) -> int:
-    """Two players over the real API: the break, one more shot, then a concession (race to
-    1): a finished match of two shots. Returns its id."""
-    room = _http(base_url, "POST", "/api/rooms", {"game": "eight_ball", "race_to": 1})
-    room_id = room["room_id"]
-    tokens = [_http(base_url, "POST", f"/api/rooms/{room_id}/join", {"name": n})["token"]
-              for n in ("Ana", "Ben")]
-    ws_base = f"ws://{urlparse(base_url).netloc}/ws/rooms/{room_id}"
-    with connect(f"{ws_base}?token={tokens[0]}") as a, \
-            connect(f"{ws_base}?token={tokens[1]}") as b:
-        players = (a, b)
-        state = _until(a, "state")[-1]
+    """Two players over the real API, the rack of `games.EIGHT_BALL` (conftest), race to 1:
+    the break pockets a ball, Ana's second shot scratches, Ben concedes. A finished match of
+    two shots; returns its id."""
+    address = urlparse(base_url).netloc
+    with http(address) as client:
+        room_id, ta, tb = seated_room(client, race_to=1)
+    with connect(ws_url(address, room_id, ta)) as ca, connect(ws_url(address, room_id, tb)) as cb:
+        a, b = JsonSocket(ca), JsonSocket(cb)
+        state = receive_until(a, "state")[-1]
+        pocketed = []
         for shot in SHOTS:
-            match = state["match"]
-            if match["decision"] is not None:
-                decision = match["decision"]
-                players[decision["seat"]].send(json.dumps(
-                    {"type": "decide", "option": decision["options"][0]}))
-                state = _until(a, "state")[-1]
-                match = state["match"]
-            shooter = players[match["turn"]]
-            if not any(row[0] == 0 for row in state["balls"]):  # ball in hand
-                shooter.send(json.dumps({"type": "place_cue", "x": 0.4, "y": 0.3}))
-                state = _until(a, "state")[-1]
-            if state["match"]["requires_call"]:
-                shooter.send(json.dumps({"type": "call", "pocket": 0}))
-                state = _until(a, "state")[-1]
-            shooter.send(json.dumps(shot))
-            seen = _until(a, "shot_result")
-            assert not any(m["type"] == "error" for m in seen), seen
-            state = _until(a, "state")[-1]
-        players[state["match"]["turn"]].send(json.dumps({"type": "concede"}))
-        assert _until(a, "state")[-1]["phase"] == "over"
-    matches = _http(base_url, "GET", "/api/matches?status=finished&limit=100")["matches"]
-    return next(m["id"] for m in matches if m["room_id"] == room_id)
+            _, seen, state = play_shot((a, b), a, state, shot)
+            pocketed += [m["outcome"]["pocketed"] for m in seen if m["type"] == "shot_result"]
+        assert pocketed == [[EIGHT_BALL_BREAK_BALL], [0]]  # a ball, then the cue ball
+        assert state["match"]["turn"] == 1  # Ben's, with ball in hand
+        b.send_json({"type": "concede"})
+        assert receive_until(a, "state")[-1]["phase"] == "over"
+    with http(address) as client:
+        matches = client.get("/api/matches", params={"status": "finished", "limit": 100})
+    return next(m["id"] for m in matches.json()["matches"] if m["room_id"] == room_id)
 
 
 def test_a_finished_match_is_listed_and_replayed_shot_by_shot(base_url, new_page, artifacts):
@@ -97,7 +69,8 @@ def test_a_finished_match_is_listed_and_replayed_shot_by_shot(base_url, new_page
     page.wait_for_function(
         "([x, y]) => { const c = window.__replay.balls.find((b) => b.id === 0);"
         " return !c || Math.hypot(c.x - x, c.y - y) > 0.2; }",
-        arg=[cue_start["x"], cue_start["y"]])
+        arg=[cue_start["x"], cue_start["y"]],
+    )
     page.get_by_test_id("replay-table").screenshot(path=str(artifacts / "replay.png"))
 
     # The break ends, its outcome shows, and the next shot follows on its own.
@@ -113,8 +86,10 @@ def test_a_finished_match_is_listed_and_replayed_shot_by_shot(base_url, new_page
     assert len(page.evaluate("window.__replay.balls")) == 16
     page.get_by_test_id("replay-next").click()
     expect(page.get_by_test_id("replay-shot")).to_have_text("shot 2 / 2")
-    shown = sorted((b["id"], round(b["x"], 3), round(b["y"], 3))
-                   for b in page.evaluate("window.__replay.balls"))
+    shown = sorted(
+        (b["id"], round(b["x"], 3), round(b["y"], 3))
+        for b in page.evaluate("window.__replay.balls")
+    )
     assert shown == sorted((i, round(x / 1000, 3), round(y / 1000, 3)) for i, x, y, _ in second)
 
     page.get_by_test_id("replay-back").click()

@@ -68,5 +68,6 @@ def test_ball_in_hand_drag_places_the_cue_ball(base_url, new_page):
     page.wait_for_function(
         "(() => { const c = window.__pool.state.balls.find((b) => b.id === 0);"
         " return c && Math.abs(c.x - 0.4) < 0.01 && Math.abs(c.y - 0.3) < 0.01; })()",
-        timeout=5000)
+        timeout=5000,
+    )
     assert page.evaluate("window.__pool.shotsSeen") == 0, "placing is not a shot"

@@ -12,13 +12,12 @@ import numpy as np
 import pytest
 
 from server.engine import BallSet, Shot, Table, rack, simulate
-from server.store import Database, Repository
 from server.rooms.replay import resimulate
+from server.store import Database, Repository
 from server.store.schema import MIGRATIONS, migrate
 
 TABLE = Table.pool("9ft")
-TABLE_FIELDS = [TABLE.length, TABLE.width, TABLE.ball_radius, TABLE.corner_mouth,
-                TABLE.side_mouth]
+TABLE_FIELDS = [TABLE.length, TABLE.width, TABLE.ball_radius, TABLE.corner_mouth, TABLE.side_mouth]
 
 
 @pytest.fixture
@@ -66,9 +65,12 @@ def test_match_game_and_shot_round_trip_exactly(db: Database) -> None:
     match = db.run(lambda repo: repo.match(7))
     assert match is not None
     assert (match.status, match.score, match.winner, match.reason) == (
-        "finished", [0, 1], 1, "Ben reached 1.")
-    assert (match.games, match.shots, match.started_at, match.finished_at) == (1, 2, 100.0,
-                                                                               200.0)
+        "finished",
+        [0, 1],
+        1,
+        "Ben reached 1.",
+    )
+    assert (match.games, match.shots, match.started_at, match.finished_at) == (1, 2, 100.0, 200.0)
     assert match.winner is not None and match.players[match.winner] == "Ben"
     games = db.run(lambda repo: repo.games(7))
     assert [(g.n, g.winner, g.score) for g in games] == [(1, 1, [0, 1])]
@@ -86,10 +88,18 @@ def test_a_stored_shot_simulates_to_the_same_result_bit_for_bit(db: Database) ->
     shot = Shot(0.0123456789, 8.7654321, (0.1, -0.2))
     original = simulate(TABLE, balls, shot)
     db.run(lambda repo: repo.start_match(1, "r", "nine_ball", ["A", "B"], 1))
-    db.run(lambda repo: repo.record_shot(1, 1, 1, 0, {"angle": shot.angle,
-                                                      "speed": shot.speed,
-                                                      "tip": list(shot.tip)},
-                                         TABLE_FIELDS, balls.to_dict(), {}))
+    db.run(
+        lambda repo: repo.record_shot(
+            1,
+            1,
+            1,
+            0,
+            {"angle": shot.angle, "speed": shot.speed, "tip": list(shot.tip)},
+            TABLE_FIELDS,
+            balls.to_dict(),
+            {},
+        )
+    )
     stored = db.run(lambda repo: repo.shot(1, 1))
     assert stored is not None
     again = resimulate(stored)
@@ -97,7 +107,8 @@ def test_a_stored_shot_simulates_to_the_same_result_bit_for_bit(db: Database) ->
     assert again.frames.cels.tobytes() == original.frames.cels.tobytes()
     assert again.final.positions.tobytes() == original.final.positions.tobytes()
     assert [(e.time, e.kind, e.ids) for e in again.events] == [
-        (e.time, e.kind, e.ids) for e in original.events]
+        (e.time, e.kind, e.ids) for e in original.events
+    ]
 
 
 def test_recent_matches_newest_first_with_a_status_filter(db: Database) -> None:
@@ -144,13 +155,22 @@ def test_call_from_the_event_loop_and_errors_come_back(db: Database) -> None:
 
 def test_a_shot_keeps_its_engine_version_and_motion(tmp_path: Path) -> None:
     db = Database(tmp_path / "m.db")
-    motion = "".join(f"{i / 20!r} frame {{\"shot\":1,\"tick\":{i * 6}}}\n" for i in range(200))
+    motion = "".join(f'{i / 20!r} frame {{"shot":1,"tick":{i * 6}}}\n' for i in range(200))
 
     def write(repo: Repository) -> None:
         repo.start_match(1, "room", "eight_ball", ["Ana", "Ben"], 1)
-        repo.record_shot(1, 1, 1, 0, {"angle": 0.0, "speed": 1.0, "tip": [0.0, 0.0]},
-                         TABLE_FIELDS, awkward_balls().to_dict(), {}, engine="1+abc",
-                         motion=motion)
+        repo.record_shot(
+            1,
+            1,
+            1,
+            0,
+            {"angle": 0.0, "speed": 1.0, "tip": [0.0, 0.0]},
+            TABLE_FIELDS,
+            awkward_balls().to_dict(),
+            {},
+            engine="1+abc",
+            motion=motion,
+        )
 
     db.run(write)
     stored = db.run(lambda repo: repo.shot(1, 1))

@@ -1,0 +1,219 @@
+"""The computer opponent on constructed tables, at zero execution noise unless stated."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from server.ai import LEVELS, Bot, Turn, play_turn
+from server.ai.geometry import pot_options
+from server.codec import to_data
+from server.engine import CUE, MAX_SPEED, MAX_TIP, Shot, simulate
+from server.rules import ANYWHERE, BEHIND_HEAD_STRING, Decision, Game
+from server.rules.shotfacts import shot_facts
+
+from .conftest import TABLE, R, set_table, straight_line
+
+SOLIDS_STRIPES = {0: "solids", 1: "stripes"}
+
+
+def test_levels_weakest_first_and_unknown_refused() -> None:
+    assert len(Bot.LEVELS) >= 4
+    assert Bot.LEVELS == LEVELS
+    sigmas = [Bot(level).level.aim for level in Bot.LEVELS]
+    assert sigmas == sorted(sigmas, reverse=True)
+    top = Bot(Bot.LEVELS[-1]).level
+    assert math.isclose(top.aim_deg, 0.125) and math.isclose(top.speed, 0.075)
+    assert math.isclose(top.tip_mm, 0.5)
+    with pytest.raises(ValueError):
+        Bot("grandmaster")
+
+
+def test_turn_is_frozen() -> None:
+    turn = Turn(decision="spot")
+    with pytest.raises(AttributeError):
+        turn.decision = "rerack"  # type: ignore[misc]
+
+
+def test_easy_straight_in_is_found_and_made(eight: Game) -> None:
+    obj, cue = straight_line(3, 0.35, 0.4)
+    game = set_table(eight, {0: cue, 1: obj, 9: (0.4, 0.3), 8: (0.5, 1.0)}, groups=SOLIDS_STRIPES)
+    for level in Bot.LEVELS:
+        turn = Bot(level).plan(game, 0)
+        assert turn.kind == "pot" and turn.target == 1, level
+        assert turn.decision is None and turn.place is None and turn.call is None
+    turn = Bot(Bot.LEVELS[-1]).plan(game, 0)
+    outcome, _ = play_turn(game, 0, turn)
+    assert outcome is not None
+    assert 1 in outcome.pocketed and not outcome.fouls and outcome.continues
+
+
+def test_blocked_ball_is_not_aimed_through(eight: Game) -> None:
+    obj, cue = straight_line(3, 0.35, 0.6)
+    blocker = ((obj[0] + cue[0]) / 2, (obj[1] + cue[1]) / 2)  # a stripe on the line
+    game = set_table(eight, {0: cue, 1: obj, 9: blocker, 8: (0.5, 1.0)}, groups=SOLIDS_STRIPES)
+    options = pot_options(TABLE, game.balls, [1], math.radians(0.125))
+    assert all(o.pocket != 3 for o in options)
+    turn = Bot(Bot.LEVELS[-1]).plan(game, 0)
+    assert turn.shot is not None
+    assert (turn.target, turn.pocket) != (1, 3)
+    facts = shot_facts(game.balls, simulate(TABLE, game.balls, turn.shot))
+    assert facts.first_contact == 1
+
+
+def test_eight_is_called_into_the_pocket_it_is_shot_at(eight: Game) -> None:
+    obj, cue = straight_line(2, 0.3, 0.35)
+    game = set_table(eight, {0: cue, 8: obj, 9: (0.4, 0.3)}, groups=SOLIDS_STRIPES)
+    assert game.requires_call
+    turn = Bot(Bot.LEVELS[-1]).plan(game, 0)
+    assert turn.target == 8 and turn.call == turn.pocket == 2
+    result_game = set_table(
+        Game.new("eight_ball", ["ana", "bot"], seed=3),
+        {0: cue, 8: obj, 9: (0.4, 0.3)},
+        groups=SOLIDS_STRIPES,
+    )
+    outcome, _ = play_turn(result_game, 0, turn)
+    assert outcome is not None and outcome.winner == 0
+
+
+@pytest.mark.parametrize("area", [ANYWHERE, BEHIND_HEAD_STRING])
+def test_ball_in_hand_is_placed_legally(eight: Game, area: str) -> None:
+    game = set_table(
+        eight,
+        {0: (1.0, 0.6), 2: (1.9, 0.5), 3: (2.2, 0.9), 10: (1.2, 0.3), 8: (1.6, 0.7)},
+        groups=SOLIDS_STRIPES,
+        ball_in_hand=area,
+    )
+    for level in Bot.LEVELS:
+        turn = Bot(level, seed=5).plan(game, 0)
+        assert turn.place is not None and turn.shot is not None
+        assert game.can_place_cue(*turn.place), (level, turn.place)
+        if area == BEHIND_HEAD_STRING:
+            assert turn.place[0] <= TABLE.head_string
+    copy = Game.from_dict(game.to_dict())
+    outcome, _ = play_turn(copy, 0, turn)
+    assert outcome is not None
+
+
+def test_break_places_behind_the_head_string_and_is_legal(eight: Game, nine: Game) -> None:
+    for game in (eight, nine):
+        assert game.breaking and game.ball_in_hand == BEHIND_HEAD_STRING
+        turn = Bot(Bot.LEVELS[-1]).plan(game, 0)
+        assert turn.kind == "break" and turn.place is not None
+        assert game.can_place_cue(*turn.place)
+        assert turn.shot is not None and turn.shot.speed > 6.0
+        outcome, _ = play_turn(game, 0, turn)
+        assert outcome is not None and not outcome.fouls
+
+
+def test_snooker_gets_a_safety_or_kick_not_a_foul(eight: Game) -> None:
+    wall = {9 + k: (1.0, 0.635 + (k - 3) * (2 * R + 0.002)) for k in range(7)}
+    placement = {0: (0.6, 0.635), 1: (2.0, 0.635), 8: (2.3, 1.1), **wall}
+    game = set_table(eight, placement, groups=SOLIDS_STRIPES)
+    assert not pot_options(TABLE, game.balls, [1], math.radians(0.125))
+    turn = Bot(Bot.LEVELS[-1]).plan(game, 0)
+    assert turn.kind in ("safety", "kick")
+    outcome, _ = play_turn(game, 0, turn)
+    assert outcome is not None and not outcome.fouls
+
+
+DECISIONS = [
+    ("eight_ball", "eight_on_break", ("spot", "rerack")),
+    ("eight_ball", "illegal_break", ("accept", "rerack", "rerack_opponent_breaks")),
+    ("nine_ball", "push_out", ("shoot", "pass")),
+]
+
+
+@pytest.mark.parametrize(("kind", "pending", "options"), DECISIONS)
+def test_every_decision_is_answered(kind: str, pending: str, options: tuple[str, ...]) -> None:
+    game = Game.new(kind, ["ana", "bot"], seed=1)
+    game.breaking = False
+    game.turn = 1
+    game.decision = Decision(1, options, "?")
+    game.pending = pending
+    for level in Bot.LEVELS:
+        turn = Bot(level).plan(game, 1)
+        assert turn.decision in options
+        assert (turn.push_out, turn.place, turn.call, turn.shot) == (False, None, None, None)
+    play_turn(game, 1, turn)
+    assert game.decision is None
+
+
+def test_push_out_when_snookered_after_the_break(nine: Game) -> None:
+    wall = {2 + k: (1.0, 0.635 + (k - 3) * (2 * R + 0.002)) for k in range(7)}
+    placement = {0: (0.6, 0.635), 1: (2.0, 0.635), 9: (2.3, 1.1), **wall}
+    game = set_table(nine, placement, turn=1)
+    game.push_out_available = True
+    turn = Bot(Bot.LEVELS[-1]).plan(game, 1)
+    assert turn.push_out and turn.kind == "push" and turn.shot is not None
+    outcome, _ = play_turn(game, 1, turn)
+    assert outcome is not None and not outcome.fouls
+    assert game.decision is not None and game.decision.seat == 0
+    answer = Bot(Bot.LEVELS[-1]).plan(game, 0)
+    assert answer.decision in ("shoot", "pass") and answer.shot is None
+    play_turn(game, 0, answer)
+    assert game.decision is None
+
+
+def _states(game: Game) -> list[Game]:
+    """The game in several states: break, open table, ball in hand, decision."""
+    out = [Game.from_dict(game.to_dict())]
+    obj, cue = straight_line(0, 0.4, 0.3)
+    out.append(set_table(Game.from_dict(game.to_dict()), {0: cue, 1: obj, 8: (2.0, 0.9)}))
+    bih = set_table(Game.from_dict(game.to_dict()), {0: cue, 1: obj, 8: (2.0, 0.9)})
+    bih.ball_in_hand = ANYWHERE
+    out.append(bih)
+    return out
+
+
+def test_plan_does_not_mutate_the_game(eight: Game) -> None:
+    for game in _states(eight):
+        before = to_data(game)
+        Bot(Bot.LEVELS[-1], seed=2).plan(game, game.turn)
+        assert to_data(game) == before
+
+
+def test_plan_is_deterministic_for_a_seed(eight: Game) -> None:
+    for game in _states(eight):
+        assert Bot("club", seed=4).plan(game, game.turn) == Bot("club", seed=4).plan(
+            game, game.turn
+        )
+
+
+def test_execute_keeps_shots_valid_and_weak_levels_miss_more() -> None:
+    rng = np.random.default_rng(0)
+    extreme = Shot(0.0, MAX_SPEED, (0.0, MAX_TIP))
+    for level in Bot.LEVELS:
+        bot = Bot(level)
+        for _ in range(200):
+            shot = bot.execute(extreme, rng)
+            assert 0 < shot.speed <= MAX_SPEED
+            assert math.hypot(*shot.tip) <= MAX_TIP + 1e-12
+        tiny = bot.execute(Shot(1.0, 0.01), rng)
+        assert tiny.speed > 0
+    assert Bot("pro").execute(extreme, None) == extreme
+
+    def spread(level: str) -> float:
+        bot, r = Bot(level), np.random.default_rng(1)
+        return float(np.std([bot.execute(Shot(0.0, 2.0), r).angle for _ in range(400)]))
+
+    spreads = [spread(level) for level in Bot.LEVELS]
+    assert spreads == sorted(spreads, reverse=True)
+    assert math.degrees(spreads[-1]) == pytest.approx(0.125, rel=0.2)
+
+
+@pytest.mark.parametrize("kind", ["eight_ball", "nine_ball"])
+def test_full_game_against_itself_ends_legally(kind: str) -> None:
+    game = Game.new(kind, ["amateur", "club"], seed=11)
+    bots = [Bot("amateur", seed=1), Bot("club", seed=2)]
+    rng = np.random.default_rng(7)
+    for _ in range(300):
+        if game.over:
+            break
+        seat = game.decision.seat if game.decision else game.turn
+        turn = bots[seat].plan(game, seat)
+        play_turn(game, seat, turn, bots[seat], rng)  # every action goes through the rules
+    assert game.over and game.winner in (0, 1) and game.reason
+    assert game.balls.on_table[game.balls.index(CUE)] or game.over
