@@ -78,6 +78,9 @@ class Settings(BaseSettings):
     shot_workers: Annotated[int, Field(ge=0, le=64)] = 0
     pace: Annotated[float, Field(gt=0.0, le=1000.0)] = 1.0  # playback speed-up (tests)
 
+    # The address players reach this server at (e.g. https://pool.example): the only
+    # origin, with `allowed_origins`, that may open a room socket. Unset: the request's Host.
+    public_url: Annotated[str, Field(pattern=r"^https?://[^/?#\s]+/?$")] | None = None
     allowed_origins: Annotated[tuple[str, ...], NoDecode] = ()  # beside same-origin; "*": any
     max_message: Annotated[int, Field(ge=256, le=1024 * KIB)] = 16 * KIB
     send_queue: Annotated[int, Field(ge=4, le=100_000)] = 64  # messages waiting for a client

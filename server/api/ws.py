@@ -40,7 +40,10 @@ async def room_socket(
     token: str | None = None,
 ) -> None:
     if not origin_allowed(
-        websocket.headers.get("origin"), websocket.headers.get("host"), settings.allowed_origins
+        websocket.headers.get("origin"),
+        websocket.headers.get("host"),
+        settings.allowed_origins,
+        settings.public_url,
     ):
         await websocket.close(CLOSE_POLICY, "origin_not_allowed")
         return

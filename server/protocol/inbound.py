@@ -21,7 +21,7 @@ Angle = Annotated[float, Field(ge=-MAX_ANGLE, le=MAX_ANGLE)]
 
 
 class ClientMessage(BaseModel):
-    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, strict=False, frozen=True)
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, strict=True, frozen=True)
 
 
 def _check_tip(tip: tuple[float, float]) -> None:

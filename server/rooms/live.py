@@ -361,7 +361,6 @@ class LiveRoom:
             self._arm_clock(restart=True)
             self.broadcast_state()
             return
-        self.observer.shot_played(room, seat, shot, before, outcome, plan)
         loop = asyncio.get_running_loop()
         start = loop.time()
         self.metrics.shot_started(start, time.perf_counter() - started)
@@ -384,6 +383,9 @@ class LiveRoom:
                 self.broadcast_body(timed.kind, timed.body, droppable=timed.droppable)
         except Exception:  # a bug here must not leave the table busy for ever
             log.exception("streaming shot %s in room %s failed", shot_id, room.room_id)
+        # Recorded only now: history, replays and the lobby must not tell a shot's outcome
+        # before its members have seen it.
+        self.observer.shot_played(room, seat, shot, before, outcome, plan)
         self._send_result(shot_id, "shot", outcome)
         room.end_shot()
         self._after_result()

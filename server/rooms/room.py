@@ -189,9 +189,17 @@ class Room:
             "status": self.status,
             "players": [s.name if s else None for s in self.seats],
             "spectators": self.spectators,
-            "score": list(self.match.score) if self.match else None,
+            "score": self.shown_score(),
             "created_at": self.created_at,
         }
+
+    def shown_score(self) -> list[int] | None:
+        """The score as the members see it: while a shot is shown, the one before it."""
+        if self.match is None:
+            return None
+        if self.shot is not None:
+            return list(self.shot.match_before["score"])
+        return list(self.match.score)
 
     def resting_balls(self) -> list[BallRow]:
         if self.match is None:
