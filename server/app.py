@@ -14,6 +14,7 @@ from fastapi.staticfiles import StaticFiles
 from server.api.headers import SecurityHeaders
 from server.api.http import router as http_router
 from server.api.matches import router as matches_router
+from server.api.quotas import ClientQuotas
 from server.api.ws import router as ws_router
 from server.config import Settings
 from server.rooms import Clock, RoomRegistry, SeedSource, StoreObserver
@@ -79,6 +80,7 @@ def create_app(
     app.add_middleware(SecurityHeaders)
     app.state.settings = settings
     app.state.registry = registry
+    app.state.quotas = ClientQuotas(settings)
     app.state.store = store
     app.include_router(http_router)
     app.include_router(matches_router)

@@ -89,17 +89,19 @@ class LiveRoom:
         self._clock: _Timer | None = None
         self._grace: dict[int, _Timer] = {}
         self._stream: asyncio.Task | None = None
+        self._presence_timer: asyncio.TimerHandle | None = None
+        self._last_presence = -math.inf
         self.closed = False
 
     # ---- sending ----------------------------------------------------------------------
 
-    def broadcast(self, message: Sequenced, droppable: bool = False) -> None:
+    def broadcast(self, message: Sequenced, droppable: bool = False, social: bool = False) -> None:
         """Send to every member with the next room sequence number."""
         self.seq += 1
         message.seq = self.seq
         encoded = text(message)
         for conn in list(self.members.values()):
-            conn.push(encoded, droppable)
+            conn.push(encoded, droppable, social)
 
     def broadcast_body(self, kind: str, body: str, droppable: bool = False) -> None:
         """`broadcast` of a message whose JSON without `type` and `seq` is ready (`body`):
@@ -140,13 +142,28 @@ class LiveRoom:
             conn.push(encoded, False)
 
     def broadcast_presence(self) -> None:
-        self.broadcast(
-            Presence(
-                players=self.room.players_info(),
-                spectators=self.room.spectators,
-                grace=self.grace_info(),
-            )
+        """Who is here. At most one every `presence_interval`: the rest of a burst of joins
+        and leaves (a crowd reconnecting in a loop) is summed up in one trailing message."""
+        if self._presence_timer is not None:
+            return  # a summary is already due
+        loop = asyncio.get_running_loop()
+        wait = self._last_presence + self.settings.presence_interval - loop.time()
+        if wait > 0:
+            self._presence_timer = loop.call_later(wait, self._send_presence)
+            return
+        self._send_presence()
+
+    def _send_presence(self) -> None:
+        self._presence_timer = None
+        if self.closed:
+            return
+        self._last_presence = asyncio.get_running_loop().time()
+        presence = Presence(
+            players=self.room.players_info(),
+            spectators=self.room.spectators,
+            grace=self.grace_info(),
         )
+        self.broadcast(presence, social=True)
 
     # ---- membership -------------------------------------------------------------------
 
@@ -218,6 +235,8 @@ class LiveRoom:
         self.closed = True
         if self._stream is not None:
             self._stream.cancel()
+        if self._presence_timer is not None:
+            self._presence_timer.cancel()
         self._cancel_clock()
         for seat in list(self._grace):
             self._cancel_grace(seat)
@@ -250,11 +269,16 @@ class LiveRoom:
                 self.send_state(conn)
             case "chat":
                 assert isinstance(msg, Chat)
+                if not conn.chat_allowed():
+                    raise ActionError("chat_rate_limited", "Too many chat messages; wait a moment.")
                 line = "".join(ch if ch.isprintable() else " " for ch in msg.text).strip()
                 if not line:
                     raise ActionError("bad_message", "text: the message is empty")
                 self.broadcast(
-                    ChatMessage(seat=seat, name=room.name_of(seat), text=line, at=self.clock.wall())
+                    ChatMessage(
+                        seat=seat, name=room.name_of(seat), text=line, at=self.clock.wall()
+                    ),
+                    social=True,
                 )
             case "aim":
                 room.check_aim(seat)

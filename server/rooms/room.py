@@ -89,6 +89,7 @@ class Room:
     shot_clock: float = 60.0
     seed: int = field(default_factory=lambda: secrets.randbelow(2**31))
     created_at: float = 0.0
+    listed: bool = True  # False: a private table, reached only through its link
     seats: list[Seat | None] = field(init=False)
     match: Match | None = field(default=None, init=False)
     shot: ShotInProgress | None = field(default=None, init=False)
