@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from server.config import Settings
 from server.engine import TICK_HZ, BallSet, Shot
 from server.protocol import LIMITS, Timed, message_text
-from server.protocol.inbound import AnyClientMessage, Chat, Decide, PlaceCue, Shoot
+from server.protocol.inbound import AnyClientMessage, Chat, Concede, Decide, PlaceCue, Shoot
 from server.protocol.outbound import (
     AimRelay,
     ChatMessage,
@@ -297,7 +297,7 @@ class LiveRoom:
                 self._changed()
             case "decide":
                 assert isinstance(msg, Decide)
-                room.decide(seat, msg.option)
+                room.decide(seat, msg.option, msg.game)
                 self._changed()
             case "push_out":
                 room.push_out(seat)
@@ -306,7 +306,8 @@ class LiveRoom:
                 room.rerack(seat)
                 self._changed()
             case "concede":
-                self._conclude("concede", room.concede(seat))
+                assert isinstance(msg, Concede)
+                self._conclude("concede", room.concede(seat, msg.game))
             case "rematch":
                 if room.vote_rematch(seat):
                     for i, s in enumerate(room.seats):

@@ -321,8 +321,9 @@ class Room:
         with _rules():
             match.game.call_pocket(seat, pocket)
 
-    def decide(self, seat: int | None, option: str) -> None:
+    def decide(self, seat: int | None, option: str, game: int | None = None) -> None:
         match, seat = self._require_player(seat)
+        _check_game(match, game)
         with _rules():
             match.game.decide(seat, option)
 
@@ -343,8 +344,9 @@ class Room:
         if seat != self.acting_seat() and not self.practice:
             raise ActionError("not_your_turn", f"It is {self.name_of(match.game.turn)}'s turn.")
 
-    def concede(self, seat: int | None) -> Outcome:
+    def concede(self, seat: int | None, game: int | None = None) -> Outcome:
         match, seat = self._require_player(seat)
+        _check_game(match, game)
         if self.practice:
             raise ActionError("not_allowed", "There is nothing to concede in practice.")
         with _rules():
@@ -374,6 +376,15 @@ class Room:
         self.match.rematch()
         self.rematch_votes.clear()
         return True
+
+
+def _check_game(match: Match, game: int | None) -> None:
+    """Refuse an action meant for another game of the match (`game` None: not named)."""
+    if game is not None and game != match.games_played + 1:
+        raise ActionError(
+            "stale_action",
+            f"That was meant for game {game}; game {match.games_played + 1} is being played.",
+        )
 
 
 @contextmanager
