@@ -21,6 +21,8 @@ from .tokens import new_room_id
 
 log = logging.getLogger(__name__)
 CLOSE_EXPIRED = 1001
+STATS_MAX_AGE = 1.0  # s
+STATS_CACHED_FROM = 100  # rooms
 
 
 class RoomRegistry:
@@ -41,6 +43,7 @@ class RoomRegistry:
         self.owners: dict[str, str] = {}  # room id -> the client that opened it
         self._open_by: dict[str, int] = {}  # client -> rooms it has open
         self._listed: list[LiveRoom] | None = None  # listed rooms, newest first (cached)
+        self._stats: dict[float, tuple[float, dict]] = {}  # window -> (loop time, stats)
         self.metrics = StreamMetrics()
         self.runner = ShotRunner(
             settings.shot_workers, settings.frame_every, settings.frames_per_message
@@ -169,16 +172,27 @@ class RoomRegistry:
         )
 
     def stats(self, window: float) -> dict:
-        """Rooms, members and the frame send lateness of the last `window` seconds."""
+        """Rooms, members and the frame send lateness of the last `window` seconds. A walk
+        over every room, so it is computed at most once a second per window: a flood of
+        requests must not become O(rooms) work each on the event loop (a few rooms are
+        always counted afresh)."""
         now = asyncio.get_running_loop().time()
+        cached = self._stats.get(window)
+        busy = len(self.rooms) > STATS_CACHED_FROM
+        if busy and cached is not None and now - cached[0] < STATS_MAX_AGE:
+            return cached[1]
         members = [c for live in self.rooms.values() for c in live.members.values()]
-        return {
+        stats = {
             "rooms": len(self.rooms),
             "rolling": sum(live.room.shot is not None for live in self.rooms.values()),
             "connections": len(members),
             "queued": sum(c.pending for c in members),
             "stream": self.metrics.summary(now, window),
         }
+        if len(self._stats) > 16:
+            self._stats.clear()
+        self._stats[window] = (now, stats)
+        return stats
 
     async def run_watchdog(self) -> None:
         """A few checks a second for all connections: cheaper than a timer per send."""
