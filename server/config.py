@@ -101,6 +101,8 @@ class Settings(BaseSettings):
     player_chat_per_second: Annotated[float, Field(gt=0.0, le=100.0)] = 1.0
     spectator_chat_burst: Annotated[float, Field(ge=1.0, le=1000.0)] = 3.0
     spectator_chat_per_second: Annotated[float, Field(gt=0.0, le=100.0)] = 0.2
+    crowd_chat_burst: Annotated[float, Field(ge=1.0, le=1000.0)] = 6.0  # all spectators
+    crowd_chat_per_second: Annotated[float, Field(gt=0.0, le=1000.0)] = 1.0
     max_spectators: Annotated[int, Field(ge=0, le=100_000)] = 200
     ws_ping_interval: PositiveSeconds = 20.0
     ws_ping_timeout: PositiveSeconds = 20.0

@@ -39,6 +39,7 @@ from .connection import CLOSE_REPLACED, Connection
 from .errors import ActionError
 from .metrics import StreamMetrics
 from .observer import NullObserver, RoomObserver
+from .ratelimit import TokenBucket
 from .room import Room
 from .shot_runner import ShotRunner
 
@@ -90,6 +91,10 @@ class LiveRoom:
         self._grace: dict[int, _Timer] = {}
         self._stream: asyncio.Task | None = None
         self._presence_timer: asyncio.TimerHandle | None = None
+        # All spectators together: however many there are, the players get at most this.
+        self._crowd_chat = TokenBucket(
+            settings.crowd_chat_burst, settings.crowd_chat_per_second, clock.monotonic
+        )
         self._last_presence = -math.inf
         self.closed = False
 
@@ -271,6 +276,8 @@ class LiveRoom:
                 assert isinstance(msg, Chat)
                 if not conn.chat_allowed():
                     raise ActionError("chat_rate_limited", "Too many chat messages; wait a moment.")
+                if seat is None and not self._crowd_chat.take():
+                    raise ActionError("chat_busy", "The spectators' chat is full; wait a moment.")
                 line = "".join(ch if ch.isprintable() else " " for ch in msg.text).strip()
                 if not line:
                     raise ActionError("bad_message", "text: the message is empty")
