@@ -9,6 +9,7 @@ from typing import Any
 
 import uvicorn
 
+from server import logs
 from server.app import create_app
 from server.config import Settings, SettingsError
 from server.rooms.prepare import warm_up
@@ -23,7 +24,7 @@ def uvicorn_config(
     ~1.5 KB/s with it, ~7.0 KB/s without (`python -m bench.stream`), for ~45 % more server
     CPU at 200 rooms (docs/performance.md).
     """
-    return uvicorn.Config(
+    config = uvicorn.Config(
         app,
         host=host,
         port=port,
@@ -35,6 +36,8 @@ def uvicorn_config(
         proxy_headers=False,
         **extra,
     )
+    logs.install()  # after uvicorn configured its loggers
+    return config
 
 
 def main(argv: list[str] | None = None) -> None:

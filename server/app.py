@@ -11,8 +11,10 @@ from fastapi import FastAPI, HTTPException
 from fastapi.responses import FileResponse
 from fastapi.staticfiles import StaticFiles
 
+from server.api.headers import SecurityHeaders
 from server.api.http import router as http_router
 from server.api.matches import router as matches_router
+from server.api.quotas import ClientQuotas
 from server.api.ws import router as ws_router
 from server.config import Settings
 from server.rooms import Clock, RoomRegistry, SeedSource, StoreObserver
@@ -72,9 +74,13 @@ def create_app(
         description="Rooms, seats and the authoritative game stream. "
         "The WebSocket protocol is in docs/protocol.md.",
         lifespan=lifespan,
+        docs_url=None,  # the interactive docs load scripts from a CDN; the schema stays
+        redoc_url=None,
     )
+    app.add_middleware(SecurityHeaders)
     app.state.settings = settings
     app.state.registry = registry
+    app.state.quotas = ClientQuotas(settings)
     app.state.store = store
     app.include_router(http_router)
     app.include_router(matches_router)
@@ -84,14 +90,19 @@ def create_app(
 
 
 def _serve_web(app: FastAPI, web_dir: Path) -> None:
-    """`/` and the static files from `web/`; `/r/{room_id}` (a table) and `/m/{match_id}`
-    (a finished match, replayed) are the same page: the client routes on the path."""
+    """The client's own files only (the page, its stylesheet and `js/`; not its tests or
+    package files). `/r/{room_id}` (a table) and `/m/{match_id}` (a finished match,
+    replayed) are the same page: the client routes on the path."""
     index = web_dir / "index.html"
 
     def page() -> FileResponse:
         if not index.is_file():
             raise HTTPException(404, {"code": "no_client", "message": "web/ is missing."})
         return FileResponse(index, media_type="text/html")
+
+    @app.get("/", include_in_schema=False)
+    async def lobby_page() -> FileResponse:
+        return page()
 
     @app.get("/r/{room_id}", include_in_schema=False)
     async def room_page(room_id: str) -> FileResponse:
@@ -101,4 +112,11 @@ def _serve_web(app: FastAPI, web_dir: Path) -> None:
     async def match_page(match_id: str) -> FileResponse:
         return page()
 
-    app.mount("/", StaticFiles(directory=web_dir, html=True, check_dir=False), name="web")
+    @app.get("/style.css", include_in_schema=False)
+    async def stylesheet() -> FileResponse:
+        path = web_dir / "style.css"
+        if not path.is_file():
+            raise HTTPException(404, {"code": "not_found", "message": "No such file."})
+        return FileResponse(path, media_type="text/css")
+
+    app.mount("/js", StaticFiles(directory=web_dir / "js", check_dir=False), name="js")

@@ -15,6 +15,7 @@ from contextvars import ContextVar
 from pathlib import Path
 from typing import Annotated, Any
 
+from limits import parse
 from pydantic import AliasChoices, Field, ValidationError, field_validator
 from pydantic.fields import FieldInfo
 from pydantic_settings import (
@@ -65,9 +66,14 @@ class Settings(BaseSettings):
     max_shot_clock: Annotated[float, Field(gt=0.0, le=600.0)] = 600.0
     grace: Seconds = 60.0  # a dropped player keeps the seat this long
     idle_ttl: PositiveSeconds = 30 * 60.0  # a room nobody is connected to expires after this
-    waiting_ttl: PositiveSeconds = 10 * 60.0  # ... or after this if nobody ever joined
+    waiting_ttl: PositiveSeconds = 3 * 60.0  # ... or after this if nobody ever joined
     sweep_interval: PositiveSeconds = 30.0
     max_rooms: Annotated[int, Field(ge=1, le=1_000_000)] = 2000
+    # Per client (address): open rooms at once, and room creations and seat takings in a
+    # moving window ("N/second|minute|hour", the `limits` library's notation).
+    max_rooms_per_client: Annotated[int, Field(ge=1, le=1_000_000)] = 20
+    room_create_rate: str = "30/minute"
+    join_rate: str = "60/minute"
 
     # The engine ticks at a fixed 120 Hz; a frame is sent every `frame_every` ticks (6: 20
     # frames/s), `frames_per_message` frames to a message (the first now, the rest ahead).
@@ -78,6 +84,9 @@ class Settings(BaseSettings):
     shot_workers: Annotated[int, Field(ge=0, le=64)] = 0
     pace: Annotated[float, Field(gt=0.0, le=1000.0)] = 1.0  # playback speed-up (tests)
 
+    # The address players reach this server at (e.g. https://pool.example): the only
+    # origin, with `allowed_origins`, that may open a room socket. Unset: the request's Host.
+    public_url: Annotated[str, Field(pattern=r"^https?://[^/?#\s]+/?$")] | None = None
     allowed_origins: Annotated[tuple[str, ...], NoDecode] = ()  # beside same-origin; "*": any
     max_message: Annotated[int, Field(ge=256, le=1024 * KIB)] = 16 * KIB
     send_queue: Annotated[int, Field(ge=4, le=100_000)] = 64  # messages waiting for a client
@@ -85,6 +94,16 @@ class Settings(BaseSettings):
     send_timeout: PositiveSeconds = 5.0
     rate_burst: Annotated[float, Field(ge=1.0, le=10_000.0)] = 40.0  # token bucket per socket
     rate_per_second: Annotated[float, Field(gt=0.0, le=10_000.0)] = 20.0
+    # Social traffic, so that no crowd can drown the players: presence at most once per
+    # interval, chat credits per sender (spectators fewer), spectators per room.
+    presence_interval: Annotated[float, Field(ge=0.0, le=60.0)] = 1.0
+    player_chat_burst: Annotated[float, Field(ge=1.0, le=1000.0)] = 8.0
+    player_chat_per_second: Annotated[float, Field(gt=0.0, le=100.0)] = 1.0
+    spectator_chat_burst: Annotated[float, Field(ge=1.0, le=1000.0)] = 3.0
+    spectator_chat_per_second: Annotated[float, Field(gt=0.0, le=100.0)] = 0.2
+    crowd_chat_burst: Annotated[float, Field(ge=1.0, le=1000.0)] = 6.0  # all spectators
+    crowd_chat_per_second: Annotated[float, Field(gt=0.0, le=1000.0)] = 1.0
+    max_spectators: Annotated[int, Field(ge=0, le=100_000)] = 200
     ws_ping_interval: PositiveSeconds = 20.0
     ws_ping_timeout: PositiveSeconds = 20.0
     # permessage-deflate: ~5x less bandwidth, but ~45 % more server CPU at 200 rooms, which
@@ -96,6 +115,15 @@ class Settings(BaseSettings):
         default=Path("billiards.db"),
         validation_alias=AliasChoices("POOL_DB_PATH", "BILLIARDS_DB"),
     )
+
+    @field_validator("room_create_rate", "join_rate")
+    @classmethod
+    def _rate(cls, value: str) -> str:
+        try:
+            parse(value)
+        except ValueError:
+            raise ValueError("a rate such as '30/minute'") from None
+        return value
 
     @field_validator("allowed_origins", mode="before")
     @classmethod

@@ -13,6 +13,8 @@ from server.config import Settings
 from server.rooms import LiveRoom, RoomRegistry
 from server.store import Database
 
+from .quotas import ClientQuotas
+
 
 def get_settings(conn: HTTPConnection) -> Settings:
     settings: Settings = conn.app.state.settings
@@ -29,6 +31,17 @@ def get_store(conn: HTTPConnection) -> Database:
     return store
 
 
+def get_quotas(conn: HTTPConnection) -> ClientQuotas:
+    quotas: ClientQuotas = conn.app.state.quotas
+    return quotas
+
+
+def client_id(conn: HTTPConnection) -> str:
+    """Who is asking, for per-client limits: the peer's address (no proxy headers are
+    trusted)."""
+    return conn.client.host if conn.client is not None else "unknown"
+
+
 def get_room(room_id: str, request: Request) -> LiveRoom:
     """The live room of the path's `room_id`, else 404 `unknown_room`."""
     live = get_registry(request).get(room_id)
@@ -41,3 +54,5 @@ SettingsDep = Annotated[Settings, Depends(get_settings)]
 Registry = Annotated[RoomRegistry, Depends(get_registry)]
 Store = Annotated[Database, Depends(get_store)]
 RoomDep = Annotated[LiveRoom, Depends(get_room)]
+Quotas = Annotated[ClientQuotas, Depends(get_quotas)]
+ClientId = Annotated[str, Depends(client_id)]

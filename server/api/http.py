@@ -9,7 +9,7 @@ from fastapi import APIRouter, HTTPException, Query, status
 from server.protocol import LIMITS, Limits
 from server.rooms import ActionError
 
-from .deps import Registry, RoomDep, SettingsDep
+from .deps import ClientId, Quotas, Registry, RoomDep, SettingsDep
 from .schemas import (
     CreateRoom,
     ErrorResponse,
@@ -24,6 +24,7 @@ from .schemas import (
 )
 
 router = APIRouter()
+MAX_PAGE = 100
 _ERRORS: dict[int | str, dict[str, Any]] = {
     404: {"model": ErrorResponse},
     409: {"model": ErrorResponse},
@@ -55,13 +56,23 @@ async def server_stats(
     "/api/rooms",
     status_code=status.HTTP_201_CREATED,
     response_model=RoomCreated,
-    responses={422: {"description": "Validation error"}, 503: {"model": ErrorResponse}},
+    responses={
+        422: {"description": "Validation error"},
+        429: {"model": ErrorResponse},
+        503: {"model": ErrorResponse},
+    },
     tags=["rooms"],
 )
 async def create_room(
-    body: CreateRoom, registry: Registry, settings: SettingsDep
+    body: CreateRoom, registry: Registry, settings: SettingsDep, quotas: Quotas, client: ClientId
 ) -> dict[str, Any]:
-    """Open a table. `practice` has one seat and no clock; join it next to sit down."""
+    """Open a table. `practice` has one seat and no clock; join it next to sit down.
+    `listed: false` opens a private table: not in the lobby, joined through its link.
+    429: this client opened too many tables (at once, or within the rate window)."""
+    if not quotas.allow("create", client):
+        raise HTTPException(
+            429, {"code": "rate_limited", "message": "Too many new tables; wait a minute."}
+        )
     clock = body.shot_clock
     if clock is not None and 0 < clock < settings.min_shot_clock:
         raise HTTPException(
@@ -73,9 +84,10 @@ async def create_room(
             },
         )
     try:
-        live = registry.create(body.game, body.race_to, clock)
+        live = registry.create(body.game, body.race_to, clock, body.listed, owner=client)
     except ActionError as exc:
-        raise HTTPException(503, {"code": exc.code, "message": exc.message}) from None
+        code = 429 if exc.code == "too_many_rooms_open" else 503
+        raise HTTPException(code, {"code": exc.code, "message": exc.message}) from None
     room = live.room
     return {
         "room_id": room.room_id,
@@ -83,13 +95,27 @@ async def create_room(
         "race_to": room.race_to,
         "shot_clock": room.shot_clock,
         "seats": len(room.seats),
+        "listed": room.listed,
         "url": f"/r/{room.room_id}",
     }
 
 
 @router.get("/api/rooms", response_model=RoomList, tags=["rooms"])
-async def list_rooms(registry: Registry) -> dict[str, Any]:
-    return {"rooms": [live.room.summary() for live in registry.listing()]}
+async def list_rooms(
+    registry: Registry,
+    limit: Annotated[int, Query(ge=1, le=MAX_PAGE)] = 50,
+    offset: Annotated[int, Query(ge=0, le=1_000_000)] = 0,
+) -> dict[str, Any]:
+    """Listed tables, newest first, a page at a time (`next`: the offset of the next page,
+    null on the last); private tables are never listed."""
+    listed = registry.listing()
+    page = listed[offset : offset + limit]
+    following = offset + limit if offset + limit < len(listed) else None
+    return {
+        "rooms": [live.room.summary() for live in page],
+        "total": len(listed),
+        "next": following,
+    }
 
 
 @router.get("/api/rooms/{room_id}", response_model=RoomDetail, responses=_ERRORS, tags=["rooms"])
@@ -100,8 +126,15 @@ async def show_room(live: RoomDep) -> dict[str, Any]:
 
 
 @router.post("/api/rooms/{room_id}/join", response_model=Joined, responses=_ERRORS, tags=["rooms"])
-async def join_room(room_id: str, body: JoinRoom, live: RoomDep) -> dict[str, Any]:
-    """Take the first free seat. The token is shown once; keep it to connect and reconnect."""
+async def join_room(
+    room_id: str, body: JoinRoom, live: RoomDep, quotas: Quotas, client: ClientId
+) -> dict[str, Any]:
+    """Take the first free seat. The token is shown once; keep it to connect and reconnect.
+    429: this client took too many seats within the rate window."""
+    if not quotas.allow("join", client):
+        raise HTTPException(
+            429, {"code": "rate_limited", "message": "Too many seats taken; wait a minute."}
+        )
     try:
         seat, token = live.room.join(body.name)
     except ActionError as exc:

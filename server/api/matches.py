@@ -174,7 +174,7 @@ async def replay_shot(
     n: int,
     store: Store,
     settings: SettingsDep,
-    pace: Annotated[float, Query(gt=0, le=100, allow_inf_nan=False)] = 1.0,
+    pace: Annotated[float, Query(ge=0.1, le=100, allow_inf_nan=False)] = 1.0,
 ) -> StreamingResponse:
     """Stream stored shot `n`'s `frame` and `event` messages exactly as the room sent them
     live (same format, same timing; `pace` 2 plays twice as fast), then its `shot_result`.

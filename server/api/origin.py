@@ -4,16 +4,40 @@ from __future__ import annotations
 
 from urllib.parse import urlsplit
 
+_DEFAULT_PORTS = {"http": 80, "https": 443}
 
-def origin_allowed(origin: str | None, host: str | None, allowed: tuple[str, ...]) -> bool:
-    """Same origin as `Host`, or listed in `allowed` ("*" = any). No Origin: not a browser."""
+
+def normalised(url: str) -> tuple[str, str, int] | None:
+    """(scheme, host, port) of an http(s) origin or URL, else None."""
+    try:
+        parts = urlsplit(url.strip())
+        port = parts.port
+    except ValueError:
+        return None
+    if parts.scheme not in _DEFAULT_PORTS or not parts.hostname:
+        return None
+    return parts.scheme, parts.hostname.lower(), port or _DEFAULT_PORTS[parts.scheme]
+
+
+def origin_allowed(
+    origin: str | None,
+    host: str | None,
+    allowed: tuple[str, ...],
+    public_url: str | None = None,
+) -> bool:
+    """Listed in `allowed` ("*" = any), or the server's own origin: `public_url` (scheme,
+    host and port) when it is configured, which a DNS-rebinding page cannot match; else,
+    for a server that does not know its address, the same host and port as `Host`.
+    No Origin: not a browser."""
     if origin is None:
         return True
     if "*" in allowed or origin.rstrip("/") in {a.rstrip("/") for a in allowed}:
         return True
-    parts = urlsplit(origin)
-    return (
-        parts.scheme in ("http", "https")
-        and host is not None
-        and parts.netloc.lower() == host.strip().lower()
-    )
+    mine = normalised(origin)
+    if mine is None:
+        return False
+    if public_url is not None:
+        return mine == normalised(public_url)
+    if host is None:
+        return False
+    return urlsplit(origin).netloc.lower() == host.strip().lower()

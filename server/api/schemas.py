@@ -21,6 +21,7 @@ class CreateRoom(Strict):
     shot_clock: (
         Annotated[float, Field(ge=0, le=600, description="seconds per shot; 0 = no clock")] | None
     ) = None
+    listed: bool = Field(True, description="false: a private table, joined only by its link")
 
 
 class RoomCreated(BaseModel):
@@ -29,6 +30,7 @@ class RoomCreated(BaseModel):
     race_to: int
     shot_clock: float
     seats: int
+    listed: bool
     url: str
 
 
@@ -47,6 +49,8 @@ class RoomSummary(BaseModel):
 
 class RoomList(BaseModel):
     rooms: list[RoomSummary]
+    total: int  # listed rooms in all
+    next: int | None  # offset of the next page; None on the last
 
 
 class RoomDetail(RoomSummary):

@@ -40,7 +40,10 @@ async def room_socket(
     token: str | None = None,
 ) -> None:
     if not origin_allowed(
-        websocket.headers.get("origin"), websocket.headers.get("host"), settings.allowed_origins
+        websocket.headers.get("origin"),
+        websocket.headers.get("host"),
+        settings.allowed_origins,
+        settings.public_url,
     ):
         await websocket.close(CLOSE_POLICY, "origin_not_allowed")
         return
@@ -55,12 +58,16 @@ async def room_socket(
             await websocket.close(CLOSE_POLICY, "bad_token")
             return
     await websocket.accept()
+    if seat is None and live.room.spectators >= settings.max_spectators:
+        await websocket.close(CLOSE_POLICY, "room_crowded")
+        return
     conn = Connection(
         websocket.send_text,
         seat,
         live.room.name_of(seat) if seat is not None else None,
         limit=settings.send_queue,
         send_timeout=settings.send_timeout,
+        chat_credit=chat_credit(settings, spectator=seat is None),
     )
     live.attach(conn)
     sender = asyncio.create_task(conn.run_sender())
@@ -76,6 +83,12 @@ async def room_socket(
                 await asyncio.wait_for(
                     websocket.close(conn.close_code, conn.close_reason), settings.send_timeout
                 )
+
+
+def chat_credit(settings: Settings, spectator: bool) -> TokenBucket:
+    if spectator:
+        return TokenBucket(settings.spectator_chat_burst, settings.spectator_chat_per_second)
+    return TokenBucket(settings.player_chat_burst, settings.player_chat_per_second)
 
 
 async def _read(websocket: WebSocket, live: LiveRoom, conn: Connection, settings: Settings) -> None:

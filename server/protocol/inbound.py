@@ -18,10 +18,13 @@ from .limits import MAX_ANGLE, MAX_CHAT, MAX_SPEED, MAX_TIP
 TipComponent = Annotated[float, Field(ge=-MAX_TIP, le=MAX_TIP)]
 Tip = tuple[TipComponent, TipComponent]
 Angle = Annotated[float, Field(ge=-MAX_ANGLE, le=MAX_ANGLE)]
+# The game (frame) of the match an action is meant for: `match.games_played` + 1. An action
+# that names a game that is over (sent just before it ended) is refused as stale.
+GameNumber = Annotated[int, Field(ge=1, le=1000)]
 
 
 class ClientMessage(BaseModel):
-    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, strict=False, frozen=True)
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, strict=True, frozen=True)
 
 
 def _check_tip(tip: tuple[float, float]) -> None:
@@ -77,6 +80,7 @@ class Decide(ClientMessage):
 
     type: Literal["decide"]
     option: Annotated[str, Field(min_length=1, max_length=32)]
+    game: GameNumber | None = None
 
 
 class PushOut(ClientMessage):
@@ -101,7 +105,10 @@ class Rematch(ClientMessage):
 
 
 class Concede(ClientMessage):
+    """Give up the current game (frame); `game`, when given, names it."""
+
     type: Literal["concede"]
+    game: GameNumber | None = None
 
 
 class Sync(ClientMessage):

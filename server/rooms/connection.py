@@ -2,7 +2,10 @@
 
 The room never awaits a client. `push` only appends; when the queue is full the oldest
 droppable message (a stale frame or aim relay) goes first, and a client that is still
-too far behind is closed with 1013 so it reconnects and gets a fresh `state`. Sending what
+too far behind is closed with 1013 so it reconnects and gets a fresh `state`. Social
+messages (chat, presence) hold at most a quarter of the queue and are the first to go: a
+crowd of chatting spectators can cost a player some chat lines, never the game's messages
+or the connection. Sending what
 is queued has a deadline (watched by the registry), so a peer that stops reading is dropped
 instead of holding anything up.
 """
@@ -16,7 +19,10 @@ from collections import deque
 from collections.abc import Awaitable, Callable
 from dataclasses import dataclass, field
 
+from .ratelimit import TokenBucket
+
 CLOSE_TOO_SLOW = 1013
+GAME, DROPPABLE, SOCIAL = 0, 1, 2  # message priorities, most needed first
 CLOSE_REPLACED = 4000
 
 _ids = itertools.count(1)
@@ -35,31 +41,46 @@ class Connection:
     dropped: int = 0  # messages skipped because the client was behind
     close_code: int | None = None  # set when the room wants this connection gone
     close_reason: str = ""
-    _queue: deque[tuple[str, bool]] = field(default_factory=deque)
+    _queue: deque[tuple[str, int]] = field(default_factory=deque)  # (text, priority)
+    _social: int = 0  # social messages in the queue
+    chat_credit: TokenBucket | None = None  # None: chat is not limited
     _wake: asyncio.Event = field(default_factory=asyncio.Event)
     _sending_since: float | None = None  # loop time the batch being sent started
     _sender: asyncio.Task | None = None
 
-    def push(self, text: str, droppable: bool = False) -> None:
-        """Queue a message without waiting; never blocks the caller."""
+    def push(self, text: str, droppable: bool = False, social: bool = False) -> None:
+        """Queue a message without waiting; never blocks the caller. `droppable`: a newer
+        one supersedes it (frames, aim); `social`: chat and presence, kept only while
+        there is room."""
         if self.close_code is not None:
             return
-        if len(self._queue) >= self.limit and not self._drop_oldest_droppable():
-            if droppable:
+        priority = SOCIAL if social else DROPPABLE if droppable else GAME
+        if priority == SOCIAL and self._social >= max(1, self.limit // 4):
+            self._drop_oldest(SOCIAL)
+        if len(self._queue) >= self.limit and not (
+            self._drop_oldest(DROPPABLE) or self._drop_oldest(SOCIAL)
+        ):
+            if priority != GAME:
                 self.dropped += 1
                 return
             self.close(CLOSE_TOO_SLOW, "too_slow")
             return
-        self._queue.append((text, droppable))
+        self._queue.append((text, priority))
+        self._social += priority == SOCIAL
         self._wake.set()
 
-    def _drop_oldest_droppable(self) -> bool:
-        for i, (_, droppable) in enumerate(self._queue):
-            if droppable:
+    def _drop_oldest(self, priority: int) -> bool:
+        for i, (_, kind) in enumerate(self._queue):
+            if kind == priority:
                 del self._queue[i]
                 self.dropped += 1
+                self._social -= priority == SOCIAL
                 return True
         return False
+
+    def chat_allowed(self) -> bool:
+        """Spend a chat credit (a bucket per sender, as lichess does)."""
+        return self.chat_credit is None or self.chat_credit.take()
 
     def close(self, code: int, reason: str) -> None:
         """Ask the sender to stop; the transport closes the socket with `code`."""
@@ -67,6 +88,7 @@ class Connection:
             self.close_code = code
             self.close_reason = reason
             self._queue.clear()
+            self._social = 0
         self._wake.set()
 
     @property
@@ -92,7 +114,8 @@ class Connection:
                 for _ in range(len(self._queue)):
                     if not self._queue or self.close_code is not None:
                         break
-                    text, _ = self._queue.popleft()
+                    text, priority = self._queue.popleft()
+                    self._social -= priority == SOCIAL
                     await self.send_text(text)
             finally:
                 self._sending_since = None

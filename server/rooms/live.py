@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from server.config import Settings
 from server.engine import TICK_HZ, BallSet, Shot
 from server.protocol import LIMITS, Timed, message_text
-from server.protocol.inbound import AnyClientMessage, Chat, Decide, PlaceCue, Shoot
+from server.protocol.inbound import AnyClientMessage, Chat, Concede, Decide, PlaceCue, Shoot
 from server.protocol.outbound import (
     AimRelay,
     ChatMessage,
@@ -39,6 +39,7 @@ from .connection import CLOSE_REPLACED, Connection
 from .errors import ActionError
 from .metrics import StreamMetrics
 from .observer import NullObserver, RoomObserver
+from .ratelimit import TokenBucket
 from .room import Room
 from .shot_runner import ShotRunner
 
@@ -89,17 +90,23 @@ class LiveRoom:
         self._clock: _Timer | None = None
         self._grace: dict[int, _Timer] = {}
         self._stream: asyncio.Task | None = None
+        self._presence_timer: asyncio.TimerHandle | None = None
+        # All spectators together: however many there are, the players get at most this.
+        self._crowd_chat = TokenBucket(
+            settings.crowd_chat_burst, settings.crowd_chat_per_second, clock.monotonic
+        )
+        self._last_presence = -math.inf
         self.closed = False
 
     # ---- sending ----------------------------------------------------------------------
 
-    def broadcast(self, message: Sequenced, droppable: bool = False) -> None:
+    def broadcast(self, message: Sequenced, droppable: bool = False, social: bool = False) -> None:
         """Send to every member with the next room sequence number."""
         self.seq += 1
         message.seq = self.seq
         encoded = text(message)
         for conn in list(self.members.values()):
-            conn.push(encoded, droppable)
+            conn.push(encoded, droppable, social)
 
     def broadcast_body(self, kind: str, body: str, droppable: bool = False) -> None:
         """`broadcast` of a message whose JSON without `type` and `seq` is ready (`body`):
@@ -140,13 +147,28 @@ class LiveRoom:
             conn.push(encoded, False)
 
     def broadcast_presence(self) -> None:
-        self.broadcast(
-            Presence(
-                players=self.room.players_info(),
-                spectators=self.room.spectators,
-                grace=self.grace_info(),
-            )
+        """Who is here. At most one every `presence_interval`: the rest of a burst of joins
+        and leaves (a crowd reconnecting in a loop) is summed up in one trailing message."""
+        if self._presence_timer is not None:
+            return  # a summary is already due
+        loop = asyncio.get_running_loop()
+        wait = self._last_presence + self.settings.presence_interval - loop.time()
+        if wait > 0:
+            self._presence_timer = loop.call_later(wait, self._send_presence)
+            return
+        self._send_presence()
+
+    def _send_presence(self) -> None:
+        self._presence_timer = None
+        if self.closed:
+            return
+        self._last_presence = asyncio.get_running_loop().time()
+        presence = Presence(
+            players=self.room.players_info(),
+            spectators=self.room.spectators,
+            grace=self.grace_info(),
         )
+        self.broadcast(presence, social=True)
 
     # ---- membership -------------------------------------------------------------------
 
@@ -218,6 +240,8 @@ class LiveRoom:
         self.closed = True
         if self._stream is not None:
             self._stream.cancel()
+        if self._presence_timer is not None:
+            self._presence_timer.cancel()
         self._cancel_clock()
         for seat in list(self._grace):
             self._cancel_grace(seat)
@@ -250,11 +274,18 @@ class LiveRoom:
                 self.send_state(conn)
             case "chat":
                 assert isinstance(msg, Chat)
+                if not conn.chat_allowed():
+                    raise ActionError("chat_rate_limited", "Too many chat messages; wait a moment.")
+                if seat is None and not self._crowd_chat.take():
+                    raise ActionError("chat_busy", "The spectators' chat is full; wait a moment.")
                 line = "".join(ch if ch.isprintable() else " " for ch in msg.text).strip()
                 if not line:
                     raise ActionError("bad_message", "text: the message is empty")
                 self.broadcast(
-                    ChatMessage(seat=seat, name=room.name_of(seat), text=line, at=self.clock.wall())
+                    ChatMessage(
+                        seat=seat, name=room.name_of(seat), text=line, at=self.clock.wall()
+                    ),
+                    social=True,
                 )
             case "aim":
                 room.check_aim(seat)
@@ -273,7 +304,7 @@ class LiveRoom:
                 self._changed()
             case "decide":
                 assert isinstance(msg, Decide)
-                room.decide(seat, msg.option)
+                room.decide(seat, msg.option, msg.game)
                 self._changed()
             case "push_out":
                 room.push_out(seat)
@@ -282,7 +313,8 @@ class LiveRoom:
                 room.rerack(seat)
                 self._changed()
             case "concede":
-                self._conclude("concede", room.concede(seat))
+                assert isinstance(msg, Concede)
+                self._conclude("concede", room.concede(seat, msg.game))
             case "rematch":
                 if room.vote_rematch(seat):
                     for i, s in enumerate(room.seats):
@@ -361,7 +393,6 @@ class LiveRoom:
             self._arm_clock(restart=True)
             self.broadcast_state()
             return
-        self.observer.shot_played(room, seat, shot, before, outcome, plan)
         loop = asyncio.get_running_loop()
         start = loop.time()
         self.metrics.shot_started(start, time.perf_counter() - started)
@@ -384,6 +415,9 @@ class LiveRoom:
                 self.broadcast_body(timed.kind, timed.body, droppable=timed.droppable)
         except Exception:  # a bug here must not leave the table busy for ever
             log.exception("streaming shot %s in room %s failed", shot_id, room.room_id)
+        # Recorded only now: history, replays and the lobby must not tell a shot's outcome
+        # before its members have seen it.
+        self.observer.shot_played(room, seat, shot, before, outcome, plan)
         self._send_result(shot_id, "shot", outcome)
         room.end_shot()
         self._after_result()

@@ -21,6 +21,8 @@ from .tokens import new_room_id
 
 log = logging.getLogger(__name__)
 CLOSE_EXPIRED = 1001
+STATS_MAX_AGE = 1.0  # s
+STATS_CACHED_FROM = 100  # rooms
 
 
 class RoomRegistry:
@@ -38,14 +40,34 @@ class RoomRegistry:
         self.clock = clock
         self.seeds = seeds or SeedSource()
         self.rooms: dict[str, LiveRoom] = {}
+        self.owners: dict[str, str] = {}  # room id -> the client that opened it
+        self._open_by: dict[str, int] = {}  # client -> rooms it has open
+        self._listed: list[LiveRoom] | None = None  # listed rooms, newest first (cached)
+        self._stats: dict[float, tuple[float, dict]] = {}  # window -> (loop time, stats)
         self.metrics = StreamMetrics()
         self.runner = ShotRunner(
             settings.shot_workers, settings.frame_every, settings.frames_per_message
         )
 
-    def create(self, game: str, race_to: int = 1, shot_clock: float | None = None) -> LiveRoom:
+    def create(
+        self,
+        game: str,
+        race_to: int = 1,
+        shot_clock: float | None = None,
+        listed: bool = True,
+        owner: str | None = None,
+    ) -> LiveRoom:
+        """A new room. `owner` (the client opening it) may hold `max_rooms_per_client`
+        rooms at once, so no single client can fill the server; `listed=False` makes a
+        private table, reached only through its link."""
         if len(self.rooms) >= self.settings.max_rooms:
             raise ActionError("too_many_rooms", "The server is full; try again later.")
+        if owner is not None and self._open_by.get(owner, 0) >= self.settings.max_rooms_per_client:
+            raise ActionError(
+                "too_many_rooms_open",
+                f"You have {self.settings.max_rooms_per_client} tables open; play or wait "
+                "for one to close.",
+            )
         room_id = new_room_id()
         while room_id in self.rooms:
             room_id = new_room_id()
@@ -57,10 +79,15 @@ class RoomRegistry:
             shot_clock=clock,
             seed=self.seeds.next(),
             created_at=self.clock.wall(),
+            listed=listed,
         )
         live = LiveRoom(room, self.settings, self.observer, self.clock)
         self._share(live)
         self.rooms[room_id] = live
+        self._listed = None
+        if owner is not None:
+            self.owners[room_id] = owner
+            self._open_by[owner] = self._open_by.get(owner, 0) + 1
         if self.observer is not None:
             self.observer.room_changed(room)
         return live
@@ -86,6 +113,7 @@ class RoomRegistry:
                 self.observer.room_restored(saved.room, saved.match_id)
             self._share(live)
             self.rooms[saved.room.room_id] = live
+            self._listed = None
             live.resume(saved.pending)
             restored.append(live)
         if restored:
@@ -100,14 +128,33 @@ class RoomRegistry:
         return self.rooms.get(room_id)
 
     def listing(self) -> list[LiveRoom]:
-        return sorted(self.rooms.values(), key=lambda r: r.room.created_at, reverse=True)
+        """The listed rooms, newest first: sorted once per change of the room set, not
+        once per request (a listing flood must not cost O(rooms log rooms) each time)."""
+        if self._listed is None:
+            listed = (live for live in self.rooms.values() if live.room.listed)
+            self._listed = sorted(listed, key=lambda r: r.room.created_at, reverse=True)
+        return self._listed
+
+    def forget(self, room_id: str) -> LiveRoom | None:
+        live = self.rooms.pop(room_id, None)
+        self._listed = None
+        owner = self.owners.pop(room_id, None)
+        if owner is not None:
+            left = self._open_by.get(owner, 1) - 1
+            if left > 0:
+                self._open_by[owner] = left
+            else:
+                self._open_by.pop(owner, None)
+        return live
 
     def sweep(self, now: float | None = None) -> list[str]:
         """Close and forget rooms nobody has used for their time to live."""
         now = self.clock.monotonic() if now is None else now
         gone = [rid for rid, live in self.rooms.items() if live.is_idle(now)]
         for rid in gone:
-            self.rooms.pop(rid).close(CLOSE_EXPIRED, "expired")
+            live = self.forget(rid)
+            assert live is not None
+            live.close(CLOSE_EXPIRED, "expired")
             log.info("room %s expired", rid)
         return gone
 
@@ -125,16 +172,27 @@ class RoomRegistry:
         )
 
     def stats(self, window: float) -> dict:
-        """Rooms, members and the frame send lateness of the last `window` seconds."""
+        """Rooms, members and the frame send lateness of the last `window` seconds. A walk
+        over every room, so it is computed at most once a second per window: a flood of
+        requests must not become O(rooms) work each on the event loop (a few rooms are
+        always counted afresh)."""
         now = asyncio.get_running_loop().time()
+        cached = self._stats.get(window)
+        busy = len(self.rooms) > STATS_CACHED_FROM
+        if busy and cached is not None and now - cached[0] < STATS_MAX_AGE:
+            return cached[1]
         members = [c for live in self.rooms.values() for c in live.members.values()]
-        return {
+        stats = {
             "rooms": len(self.rooms),
             "rolling": sum(live.room.shot is not None for live in self.rooms.values()),
             "connections": len(members),
             "queued": sum(c.pending for c in members),
             "stream": self.metrics.summary(now, window),
         }
+        if len(self._stats) > 16:
+            self._stats.clear()
+        self._stats[window] = (now, stats)
+        return stats
 
     async def run_watchdog(self) -> None:
         """A few checks a second for all connections: cheaper than a timer per send."""

@@ -89,6 +89,7 @@ class Room:
     shot_clock: float = 60.0
     seed: int = field(default_factory=lambda: secrets.randbelow(2**31))
     created_at: float = 0.0
+    listed: bool = True  # False: a private table, reached only through its link
     seats: list[Seat | None] = field(init=False)
     match: Match | None = field(default=None, init=False)
     shot: ShotInProgress | None = field(default=None, init=False)
@@ -189,9 +190,17 @@ class Room:
             "status": self.status,
             "players": [s.name if s else None for s in self.seats],
             "spectators": self.spectators,
-            "score": list(self.match.score) if self.match else None,
+            "score": self.shown_score(),
             "created_at": self.created_at,
         }
+
+    def shown_score(self) -> list[int] | None:
+        """The score as the members see it: while a shot is shown, the one before it."""
+        if self.match is None:
+            return None
+        if self.shot is not None:
+            return list(self.shot.match_before["score"])
+        return list(self.match.score)
 
     def resting_balls(self) -> list[BallRow]:
         if self.match is None:
@@ -312,8 +321,9 @@ class Room:
         with _rules():
             match.game.call_pocket(seat, pocket)
 
-    def decide(self, seat: int | None, option: str) -> None:
+    def decide(self, seat: int | None, option: str, game: int | None = None) -> None:
         match, seat = self._require_player(seat)
+        _check_game(match, game)
         with _rules():
             match.game.decide(seat, option)
 
@@ -334,8 +344,9 @@ class Room:
         if seat != self.acting_seat() and not self.practice:
             raise ActionError("not_your_turn", f"It is {self.name_of(match.game.turn)}'s turn.")
 
-    def concede(self, seat: int | None) -> Outcome:
+    def concede(self, seat: int | None, game: int | None = None) -> Outcome:
         match, seat = self._require_player(seat)
+        _check_game(match, game)
         if self.practice:
             raise ActionError("not_allowed", "There is nothing to concede in practice.")
         with _rules():
@@ -365,6 +376,15 @@ class Room:
         self.match.rematch()
         self.rematch_votes.clear()
         return True
+
+
+def _check_game(match: Match, game: int | None) -> None:
+    """Refuse an action meant for another game of the match (`game` None: not named)."""
+    if game is not None and game != match.games_played + 1:
+        raise ActionError(
+            "stale_action",
+            f"That was meant for game {game}; game {match.games_played + 1} is being played.",
+        )
 
 
 @contextmanager

@@ -44,6 +44,7 @@ class SavedRoomData:
     shots_played: int
     rematch_votes: list[int]
     pending: PendingShot | None
+    listed: bool = True
 
 
 @dataclass(frozen=True)
@@ -75,6 +76,7 @@ def room_to_snapshot(
         shots_played=shots_played,
         rematch_votes=sorted(room.rematch_votes),
         pending=pending,
+        listed=room.listed,
     )
     result: dict[str, Any] = to_data(data)
     return result
@@ -92,6 +94,7 @@ def room_from_snapshot(data: dict[str, Any]) -> SavedRoom:
         shot_clock=saved.shot_clock,
         seed=saved.seed,
         created_at=saved.created_at,
+        listed=saved.listed,
     )
     room.seats = [None if s is None else Seat(s.name, s.token_hash) for s in saved.seats]
     room.match = Match.from_dict(saved.match) if saved.match is not None else None

@@ -13,6 +13,7 @@ import logging
 import queue
 import sqlite3
 import threading
+import time
 from collections.abc import Callable
 from concurrent.futures import Future
 from pathlib import Path
@@ -26,8 +27,9 @@ T = TypeVar("T")
 
 
 class Database:
-    def __init__(self, path: Path | str) -> None:
+    def __init__(self, path: Path | str, write_retry: float = 600.0) -> None:
         self.path = Path(path)
+        self.write_retry = write_retry  # s a write is retried while the file is locked
         self.closed = True
         self.open()
 
@@ -60,22 +62,40 @@ class Database:
             job = self._jobs.get()
             if job is None:
                 break
-            fn, future = job
+            fn, future, retry_for = job
             if not future.set_running_or_notify_cancel():
                 continue
             try:
-                future.set_result(fn(repo))
+                future.set_result(self._attempt(fn, repo, retry_for))
             except BaseException as exc:
                 future.set_exception(exc)
         conn.close()
 
-    def submit(self, fn: Callable[[Repository], T]) -> Future[T]:
-        """Queue `fn(repo)`; returns at once."""
+    def _attempt(self, fn: Callable[[Repository], T], repo: Repository, retry_for: float) -> T:
+        """`fn(repo)`, tried again with backoff while another process holds the file: a
+        lock must delay the history, not lose it. The queue waits meanwhile, so writes stay
+        in order (a saved room is never older than the shot recorded before it)."""
+        deadline = time.monotonic() + retry_for
+        delay = 0.05
+        while True:
+            try:
+                return fn(repo)
+            except sqlite3.OperationalError as exc:
+                transient = "locked" in str(exc) or "busy" in str(exc)
+                if not transient or time.monotonic() + delay > deadline:
+                    raise
+                log.warning("store: %s; trying again in %.2f s", exc, delay)
+                time.sleep(delay)
+                delay = min(2 * delay, 2.0)
+
+    def submit(self, fn: Callable[[Repository], T], retry_for: float = 10.0) -> Future[T]:
+        """Queue `fn(repo)`; returns at once. While the file is locked by another process
+        it is tried again for up to `retry_for` seconds."""
         future: Future[T] = Future()
         if self.closed:
             future.set_exception(RuntimeError("the store is closed"))
             return future
-        self._jobs.put((fn, future))
+        self._jobs.put((fn, future, retry_for))
         return future
 
     def write(self, fn: Callable[[Repository], object], what: str) -> None:
@@ -85,7 +105,7 @@ class Database:
             if future.exception() is not None:
                 log.error("store: %s failed", what, exc_info=future.exception())
 
-        self.submit(fn).add_done_callback(done)
+        self.submit(fn, retry_for=self.write_retry).add_done_callback(done)
 
     def run(self, fn: Callable[[Repository], T]) -> T:
         """Wait for the result (startup, shutdown, tests; not on the event loop)."""

@@ -46,9 +46,11 @@ export const api = {
    * @param {string} game
    * @param {number} raceTo
    * @param {number} [shotClock]
+   * @param {boolean} [listed] false: a private table, reached only through its link
    */
-  createRoom: (game, raceTo, shotClock) => request('POST', '/api/rooms',
-    { game, race_to: raceTo, ...(shotClock !== undefined ? { shot_clock: shotClock } : {}) }),
+  createRoom: (game, raceTo, shotClock, listed = true) => request('POST', '/api/rooms',
+    { game, race_to: raceTo, listed,
+      ...(shotClock !== undefined ? { shot_clock: shotClock } : {}) }),
   listRooms: () => request('GET', '/api/rooms'),
   /** @param {string} roomId */
   getRoom: (roomId) => request('GET', `/api/rooms/${encodeURIComponent(roomId)}`),

@@ -44,7 +44,8 @@ export function startLobby() {
     const lo = Number(raceEl.min) || 1;
     const raceTo = Math.min(Number(raceEl.max) || lo, Math.max(lo, Number(raceEl.value) || lo));
     try {
-      const room = await api.createRoom($select('game').value, raceTo);
+      const listed = !$input('private-table').checked;
+      const room = await api.createRoom($select('game').value, raceTo, undefined, listed);
       await joinAndGo(room.room_id, name);
     } catch (e) { showError(errorText(e)); }
   });

@@ -39,6 +39,8 @@ export function startTable(roomId) {
   });
 
   let state = initialState({ roomId, name: memory.name() });
+  /** The game (frame) of the match now: what a concession or a decision is meant for. */
+  const currentGame = () => (state.match?.games_played ?? 0) + 1;
   const audio = new TableAudio();
   audio.setMuted(memory.muted());
   const playback = new ShotPlayback({ cels: CELS, delay: 0.1,
@@ -152,7 +154,8 @@ export function startTable(roomId) {
   bindMute($('mute'), audio, (muted) => memory.setMuted(muted));
   $('rematch').addEventListener('click', () => send({ type: 'rematch' }));
   $('concede').addEventListener('click', () => {
-    if (confirm('Concede this frame?')) send({ type: 'concede' });
+    // Naming the game makes a concession sent just as the frame ended harmless.
+    if (confirm('Concede this frame?')) send({ type: 'concede', game: currentGame() });
   });
   $('rerack').addEventListener('click', () => send({ type: 'rerack' }));
   $('push-out').addEventListener('click', () => send({ type: 'push_out' }));
@@ -289,7 +292,7 @@ export function startTable(roomId) {
     draw(now);
     renderHud(state, now);
     renderChat(state);
-    renderDecision(state, (option) => send({ type: 'decide', option }));
+    renderDecision(state, (option) => send({ type: 'decide', option, game: currentGame() }));
   });
 
   // Read-only hook for automated tests and debugging.

@@ -1,0 +1,301 @@
+"""Under attack: what floods do to the players of a real server.
+
+    .venv/bin/python -m bench.crowd [--runs 3] [--seconds 12]
+
+Starts `python -m server` on a free loopback port (throw-away database) and measures, for
+each flood, the two players of one room playing hard shots (a `frame` of tick k is late by
+its arrival minus the first frame's arrival minus (k - k0)/120 s; p50 / p99 over the
+window), the player sockets closed, the shot results lost, and what the flood got through:
+- quiet: the two players alone;
+- crowd: 150 spectators chatting as fast as they can and 30 reconnecting in a loop;
+- rooms: one client trying to open 5,000 rooms (then: can another client open one?);
+- listing: 2,000 rooms open and 8 clients listing them back to back (shot start p99 from
+  the server's `/api/stats`).
+Prints the median of the runs for each flood.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import contextlib
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import httpx
+from websockets.asyncio.client import connect
+from websockets.exceptions import ConnectionClosed
+
+from bench.load import free_port, wait_healthy
+
+TICK_HZ = 120
+
+
+def start(port: int, db: Path, log: Path, extra: dict[str, str]) -> subprocess.Popen:
+    env = {
+        **os.environ,
+        "POOL_DB_PATH": str(db),
+        "POOL_MAX_ROOMS": "5000",
+        "POOL_MAX_SPECTATORS": "500",
+        "POOL_SHOT_CLOCK": "0",
+        **extra,
+    }
+    return subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "server",
+            "--host",
+            "127.0.0.1",
+            "--port",
+            str(port),
+            "--log-level",
+            "warning",
+        ],
+        env=env,
+        stdout=log.open("w"),
+        stderr=subprocess.STDOUT,
+    )
+
+
+class Players:
+    """Two players taking turns with hard shots; records frame lateness and results."""
+
+    def __init__(self) -> None:
+        self.late: list[float] = []
+        self.results = 0
+        self.closed: list[str] = []
+        self.chat = 0
+        self.presence = 0
+
+    async def play(self, url: str, seat: int, stop: asyncio.Event) -> None:
+        first: tuple[float, int] | None = None
+        placed = False
+        try:
+            async with connect(url, max_size=2**22) as ws:
+                await ws.send(json.dumps({"type": "sync"}))
+                while not stop.is_set():
+                    try:
+                        raw = await asyncio.wait_for(ws.recv(), 0.5)
+                    except TimeoutError:
+                        continue
+                    now = time.perf_counter()
+                    message = json.loads(raw)
+                    kind = message["type"]
+                    if kind == "chat":
+                        self.chat += 1
+                    elif kind == "presence":
+                        self.presence += 1
+                    elif kind == "frame":
+                        if first is None:
+                            first = (now, message["tick"])
+                        else:
+                            due = first[0] + (message["tick"] - first[1]) / TICK_HZ
+                            self.late.append(now - due)
+                    elif kind == "shot_result":
+                        self.results += 1
+                        first, placed = None, False
+                    elif kind == "state" and message["phase"] == "aiming":
+                        await self._act(ws, message["match"], seat, placed)
+                        placed = placed or bool(message["match"]["ball_in_hand"])
+        except ConnectionClosed as exc:
+            self.closed.append(f"{exc.rcvd.code} {exc.rcvd.reason}" if exc.rcvd else "?")
+
+    async def _act(self, ws, match: dict, seat: int, placed: bool) -> None:
+        decision = match["decision"]
+        if decision is not None:
+            if decision["seat"] == seat:
+                await ws.send(json.dumps({"type": "decide", "option": decision["options"][0]}))
+            return
+        if match["turn"] != seat:
+            return
+        if match["ball_in_hand"] and not placed:
+            await ws.send(json.dumps({"type": "place_cue", "x": 0.5, "y": 0.6}))
+            return
+        if match.get("requires_call"):
+            await ws.send(json.dumps({"type": "call", "pocket": 0}))
+        await ws.send(
+            json.dumps({"type": "shoot", "angle": 0.7 * self.results + 0.2, "speed": 7.0})
+        )
+
+
+async def chatter(url: str, stop: asyncio.Event, counts: dict) -> None:
+    with contextlib.suppress(Exception):
+        async with connect(url) as ws:
+            while not stop.is_set():
+                await ws.send(json.dumps({"type": "chat", "text": "what a shot"}))
+                counts["sent"] += 1
+                with contextlib.suppress(TimeoutError):
+                    while True:
+                        await asyncio.wait_for(ws.recv(), 0.05)
+
+
+async def churner(url: str, stop: asyncio.Event, counts: dict) -> None:
+    while not stop.is_set():
+        with contextlib.suppress(Exception):
+            async with connect(url) as ws:
+                await ws.recv()
+                counts["reconnects"] += 1
+
+
+async def room_flood(base: str, stop: asyncio.Event, counts: dict) -> None:
+    async with httpx.AsyncClient(base_url=base) as http:
+        while not stop.is_set() and counts["tried"] < 5000:
+            response = await http.post("/api/rooms", json={"game": "eight_ball"})
+            counts["tried"] += 1
+            counts["made"] += response.status_code == 201
+
+
+async def list_flood(base: str, stop: asyncio.Event, counts: dict) -> None:
+    async with httpx.AsyncClient(base_url=base, timeout=30) as http:
+        while not stop.is_set():
+            await http.get("/api/rooms")
+            counts["listed"] += 1
+
+
+async def one_run(flood: str, seconds: float) -> dict:
+    with tempfile.TemporaryDirectory() as scratch:
+        port = free_port()
+        # The listing flood needs 2,000 rooms from this one address: lift its limits there.
+        extra = (
+            {"POOL_MAX_ROOMS_PER_CLIENT": "5000", "POOL_ROOM_CREATE_RATE": "100000/minute"}
+            if flood == "listing"
+            else {}
+        )
+        proc = start(port, Path(scratch) / "pool.db", Path(scratch) / "server.log", extra)
+        base = f"http://127.0.0.1:{port}"
+        try:
+            await wait_healthy(base, proc)
+            return await measure(flood, base, port, seconds)
+        finally:
+            proc.terminate()
+            proc.wait(30)
+
+
+async def measure(flood: str, base: str, port: int, seconds: float) -> dict:
+    async with httpx.AsyncClient(base_url=base, timeout=60) as http:
+        if flood == "listing":
+            for _ in range(2000):
+                await http.post("/api/rooms", json={"game": "eight_ball"})
+        room = (await http.post("/api/rooms", json={"game": "eight_ball"})).json()["room_id"]
+        tokens = [
+            (await http.post(f"/api/rooms/{room}/join", json={"name": n})).json()["token"]
+            for n in ("Ana", "Ben")
+        ]
+    ws_base = f"ws://127.0.0.1:{port}/ws/rooms/{room}"
+    stop = asyncio.Event()
+    players = Players()
+    counts = {"sent": 0, "reconnects": 0, "tried": 0, "made": 0, "listed": 0}
+    tasks = [
+        asyncio.create_task(players.play(f"{ws_base}?token={t}", i, stop))
+        for i, t in enumerate(tokens)
+    ]
+    # The flood runs in a process of its own, so its clients do not slow the players'
+    # measurement down (this machine has two cores: server, players and flood share them).
+    flooder = None
+    if flood != "quiet":
+        flooder = await asyncio.create_subprocess_exec(
+            sys.executable,
+            "-m",
+            "bench.crowd",
+            "--flood-only",
+            flood,
+            "--base",
+            base,
+            "--room",
+            room,
+            "--seconds",
+            str(seconds),
+            stdout=asyncio.subprocess.PIPE,
+        )
+    await asyncio.sleep(seconds)
+    async with httpx.AsyncClient(base_url=base, timeout=60) as http:
+        stats = (await http.get("/api/stats", params={"window": seconds})).json()
+    # Another client (another loopback address) can still open a table.
+    elsewhere = httpx.AsyncHTTPTransport(local_address="127.0.0.2")
+    async with httpx.AsyncClient(base_url=base, timeout=60, transport=elsewhere) as http:
+        other = await http.post("/api/rooms", json={"game": "practice"})
+    stop.set()
+    await asyncio.gather(*tasks, return_exceptions=True)
+    if flooder is not None:
+        out, _ = await flooder.communicate()
+        counts.update(json.loads(out.decode().strip().splitlines()[-1]))
+    late = sorted(players.late) or [0.0]
+    return {
+        "late_p50_ms": 1000 * late[len(late) // 2],
+        "late_p99_ms": 1000 * late[min(len(late) - 1, int(len(late) * 0.99))],
+        "start_p99_ms": stats["stream"]["start_p99_ms"] or 0.0,
+        "results": players.results / 2,
+        "closed": len(players.closed),
+        "chat_per_s": players.chat / 2 / seconds,
+        "presence_per_s": players.presence / 2 / seconds,
+        "flood_per_s": (counts["sent"] + counts["reconnects"] + counts["tried"] + counts["listed"])
+        / seconds,
+        "rooms_made": counts["made"],
+        "other_client": other.status_code,
+    }
+
+
+async def flood_only(flood: str, base: str, room: str, seconds: float) -> dict:
+    stop = asyncio.Event()
+    counts = {"sent": 0, "reconnects": 0, "tried": 0, "made": 0, "listed": 0}
+    ws_base = base.replace("http://", "ws://") + f"/ws/rooms/{room}"
+    if flood == "crowd":
+        tasks = [asyncio.create_task(chatter(ws_base, stop, counts)) for _ in range(150)]
+        tasks += [asyncio.create_task(churner(ws_base, stop, counts)) for _ in range(30)]
+    elif flood == "rooms":
+        tasks = [asyncio.create_task(room_flood(base, stop, counts))]
+    else:
+        tasks = [asyncio.create_task(list_flood(base, stop, counts)) for _ in range(8)]
+    await asyncio.sleep(seconds)
+    stop.set()
+    await asyncio.gather(*tasks, return_exceptions=True)
+    return counts
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(
+        prog="python -m bench.crowd",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    parser.add_argument("--runs", type=int, default=3)
+    parser.add_argument("--seconds", type=float, default=12.0)
+    parser.add_argument("--floods", default="quiet,crowd,rooms,listing")
+    parser.add_argument("--flood-only", help=argparse.SUPPRESS)
+    parser.add_argument("--base", help=argparse.SUPPRESS)
+    parser.add_argument("--room", help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    if args.flood_only:
+        print(
+            json.dumps(asyncio.run(flood_only(args.flood_only, args.base, args.room, args.seconds)))
+        )
+        return
+    print(
+        f"{'flood':>8} {'flood/s':>8} {'late p50':>9} {'late p99':>9} {'start p99':>10} "
+        f"{'results':>8} {'closed':>7} {'chat/s':>7} {'pres/s':>7} {'rooms':>6} {'other':>6}"
+    )
+    for flood in args.floods.split(","):
+        runs = [asyncio.run(one_run(flood, args.seconds)) for _ in range(args.runs)]
+
+        def median(key: str, runs: list[dict] = runs) -> float:
+            return statistics.median(r[key] for r in runs)
+
+        print(
+            f"{flood:>8} {median('flood_per_s'):8.0f} {median('late_p50_ms'):9.1f} "
+            f"{median('late_p99_ms'):9.1f} {median('start_p99_ms'):10.1f} "
+            f"{median('results'):8.1f} {median('closed'):7.0f} {median('chat_per_s'):7.1f} "
+            f"{median('presence_per_s'):7.1f} {median('rooms_made'):6.0f} "
+            f"{median('other_client'):6.0f}",
+            flush=True,
+        )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,141 @@
+"""A crowd in one room while two players play on a real server: 150 spectators chatting
+and 30 reconnecting in a loop close no player socket, and every shot's result reaches both
+players. (How late frames get under such a crowd is measured by `python -m bench.crowd`.)"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+from pathlib import Path
+
+import pytest
+from websockets.asyncio.client import connect
+from websockets.exceptions import ConnectionClosed
+
+from server.app import create_app
+from server.config import Settings
+from server.embedded import bound_socket, serving
+from server.rooms import SeedSource
+
+pytestmark = pytest.mark.timeout(240)
+SHOTS = 4
+CHATTERS = 150
+CHURNERS = 30
+
+
+async def player(
+    url: str,
+    seat: int,
+    plays: asyncio.Event,
+    stop: asyncio.Event,
+    results: list[int],
+    closes: list[object],
+) -> None:
+    """Plays whenever it is this seat's turn (answering any decision with its first
+    option); counts the results it receives."""
+    synced = placed = False
+    try:
+        async with connect(url, max_size=2**22) as ws:
+            while not stop.is_set():
+                if plays.is_set() and not synced:
+                    synced = True
+                    await ws.send(json.dumps({"type": "sync"}))
+                try:
+                    message = json.loads(await asyncio.wait_for(ws.recv(), 0.5))
+                except TimeoutError:
+                    continue
+                if message["type"] == "shot_result":
+                    results.append(message["shot"])
+                    placed = False
+                if not (plays.is_set() and message["type"] == "state"):
+                    continue
+                match = message["match"]
+                if message["phase"] != "aiming" or match is None:
+                    continue
+                decision = match["decision"]
+                if decision is not None:
+                    if decision["seat"] == seat:
+                        await ws.send(
+                            json.dumps({"type": "decide", "option": decision["options"][0]})
+                        )
+                    continue
+                if match["turn"] != seat:
+                    continue
+                if match["ball_in_hand"] and not placed:  # the ball may stay in hand
+                    placed = True
+                    await ws.send(json.dumps({"type": "place_cue", "x": 0.5, "y": 0.6}))
+                    continue
+                await ws.send(
+                    json.dumps({"type": "shoot", "angle": 0.4 * len(results), "speed": 4.0})
+                )
+    except ConnectionClosed as exc:
+        closes.append((exc.rcvd.code, exc.rcvd.reason) if exc.rcvd else None)
+
+
+async def chatter(url: str, stop: asyncio.Event, i: int) -> None:
+    async with connect(url) as ws:
+        n = 0
+        while not stop.is_set():
+            await ws.send(json.dumps({"type": "chat", "text": f"fan {i} says {n}"}))
+            n += 1
+            try:
+                while True:
+                    await asyncio.wait_for(ws.recv(), 0.2)
+            except TimeoutError:
+                pass
+
+
+async def churner(url: str, stop: asyncio.Event) -> None:
+    while not stop.is_set():
+        async with connect(url) as ws:
+            await ws.recv()
+
+
+async def crowd(address: str, room_id: str, tokens: list[str]) -> tuple[list[int], list[object]]:
+    base = f"ws://{address}/ws/rooms/{room_id}"
+    stop, plays = asyncio.Event(), asyncio.Event()
+    results: list[int] = []
+    closes: list[object] = []
+    players = [
+        asyncio.create_task(player(f"{base}?token={t}", i, plays, stop, results, closes))
+        for i, t in enumerate(tokens)
+    ]
+    fans = [asyncio.create_task(chatter(base, stop, i)) for i in range(CHATTERS)]
+    fans += [asyncio.create_task(churner(base, stop)) for _ in range(CHURNERS)]
+    await asyncio.sleep(2.0)  # the crowd is in
+    plays.set()
+    for _ in range(600):
+        if len(results) >= 2 * SHOTS or closes:
+            break
+        await asyncio.sleep(0.1)
+    stop.set()
+    await asyncio.gather(*players, *fans, return_exceptions=True)
+    return results, closes
+
+
+def test_a_chatting_churning_crowd_closes_no_player(tmp_path: Path):
+    settings = Settings(
+        web_dir=tmp_path,
+        db_path=tmp_path / "pool.db",
+        pace=4.0,
+        max_spectators=CHATTERS + CHURNERS + 10,
+        shot_clock=0.0,
+    )
+    app = create_app(settings, seeds=SeedSource.fixed(5))
+    with serving(app, settings, bound_socket()) as address:
+        from urllib.request import Request, urlopen
+
+        def post(path: str, body: dict) -> dict:
+            request = Request(
+                f"http://{address}{path}",
+                json.dumps(body).encode(),
+                {"content-type": "application/json"},
+            )
+            return json.loads(urlopen(request, timeout=10).read())
+
+        room_id = post("/api/rooms", {"game": "eight_ball", "shot_clock": 0})["room_id"]
+        tokens = [post(f"/api/rooms/{room_id}/join", {"name": n})["token"] for n in ("Ana", "Ben")]
+        results, closes = asyncio.run(crowd(address, room_id, tokens))
+    assert closes == []  # no player was closed
+    shots = sorted(set(results))
+    assert len(shots) >= SHOTS and all(results.count(s) == 2 for s in shots[:SHOTS])

@@ -1,0 +1,88 @@
+"""A lock on the database delays the history, never loses it; and nothing about a shot is
+public before its members have seen it."""
+
+from __future__ import annotations
+
+import sqlite3
+import threading
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+from fastapi.testclient import TestClient
+
+from server.app import create_app
+from server.config import Settings
+from server.rooms import SeedSource
+from server.store import Database
+
+pytestmark = pytest.mark.timeout(120)
+TABLE = [2.54, 1.27, 0.028575, 0.114, 0.127]
+
+
+def test_writes_wait_out_a_12_second_lock_in_order(tmp_path: Path):
+    db = Database(tmp_path / "pool.db")
+    db.run(lambda repo: repo.start_match(1, "room", "practice", ["Ana"], 1))
+    holder = sqlite3.connect(tmp_path / "pool.db", isolation_level=None, check_same_thread=False)
+    holder.execute("BEGIN EXCLUSIVE")  # another process holds the file
+    released = threading.Event()
+
+    def release() -> None:
+        time.sleep(12.0)
+        holder.execute("COMMIT")
+        released.set()
+
+    threading.Thread(target=release, daemon=True).start()
+    for n in range(1, 6):
+        db.write(
+            lambda repo, n=n: repo.record_shot(
+                1,
+                n,
+                1,
+                0,
+                {"angle": 0.0, "speed": 1.0, "tip": [0.0, 0.0]},
+                TABLE,
+                {"ids": []},
+                {"n": n},
+            ),
+            "record shot",
+        )
+        db.write(lambda repo, n=n: repo.save_room("room", f'{{"after_shot":{n}}}'), "save room")
+    shots = db.run(lambda repo: repo.shots(1))
+    rooms = db.run(lambda repo: repo.rooms())
+    db.close()
+    assert released.is_set()
+    assert [(s.n, s.outcome) for s in shots] == [(n, {"n": n}) for n in range(1, 6)]
+    assert [r.data for r in rooms] == [{"after_shot": 5}]
+
+
+@pytest.fixture
+def slow_client(tmp_path: Path) -> Iterator[TestClient]:
+    settings = Settings(web_dir=tmp_path, db_path=tmp_path / "pool.db", pace=1.0)
+    with TestClient(create_app(settings, seeds=SeedSource.fixed(5))) as c:
+        yield c
+
+
+def test_a_shot_is_public_only_once_it_has_been_shown(slow_client: TestClient):
+    client = slow_client
+    room_id = client.post("/api/rooms", json={"game": "eight_ball"}).json()["room_id"]
+    tokens = [
+        client.post(f"/api/rooms/{room_id}/join", json={"name": n}).json()["token"]
+        for n in ("Ana", "Ben")
+    ]
+    with client.websocket_connect(f"/ws/rooms/{room_id}?token={tokens[0]}") as ana:
+        while ana.receive_json()["type"] != "presence":
+            pass
+        ana.send_json({"type": "shoot", "angle": 0.0, "speed": 9.0})
+        while ana.receive_json()["type"] != "frame":
+            pass  # the break is being shown now
+        during = client.get("/api/matches/1").json()
+        replay = client.get("/api/matches/1/shots/1/replay")
+        listed = client.get("/api/rooms").json()["rooms"][0]
+        assert during["shots"] == [] and replay.status_code == 404
+        assert listed["score"] == [0, 0]
+        while ana.receive_json()["type"] != "shot_result":
+            pass
+        after = client.get("/api/matches/1").json()
+    assert [s["n"] for s in after["shots"]] == [1]
