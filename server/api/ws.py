@@ -74,6 +74,8 @@ async def room_socket(
     reader = asyncio.create_task(_read(websocket, live, conn, settings))
     try:
         await asyncio.wait({sender, reader}, return_when=asyncio.FIRST_COMPLETED)
+        if conn.flushing and not sender.done():  # the replies owed before the close
+            await asyncio.wait({sender}, timeout=settings.send_timeout)
     finally:
         await cancel_quietly(reader)
         await cancel_quietly(sender)
@@ -111,7 +113,7 @@ async def _read(websocket: WebSocket, live: LiveRoom, conn: Connection, settings
             conn.close(CLOSE_TOO_BIG, "message_too_big")
             return
         if not bucket.take():
-            conn.close(CLOSE_POLICY, "rate_limited")
+            conn.close(CLOSE_POLICY, "rate_limited", flush=True)
             return
         if raw is None:
             conn.push(

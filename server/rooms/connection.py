@@ -41,6 +41,7 @@ class Connection:
     dropped: int = 0  # messages skipped because the client was behind
     close_code: int | None = None  # set when the room wants this connection gone
     close_reason: str = ""
+    flushing: bool = False  # closing, but sending what is queued first
     _queue: deque[tuple[str, int]] = field(default_factory=deque)  # (text, priority)
     _social: int = 0  # social messages in the queue
     chat_credit: TokenBucket | None = None  # None: chat is not limited
@@ -82,13 +83,17 @@ class Connection:
         """Spend a chat credit (a bucket per sender, as lichess does)."""
         return self.chat_credit is None or self.chat_credit.take()
 
-    def close(self, code: int, reason: str) -> None:
-        """Ask the sender to stop; the transport closes the socket with `code`."""
+    def close(self, code: int, reason: str, flush: bool = False) -> None:
+        """Ask the sender to stop; the transport closes the socket with `code`. `flush`:
+        what is queued still goes out first (the replies a client is owed before a policy
+        close), under the usual send deadline."""
         if self.close_code is None:
             self.close_code = code
             self.close_reason = reason
-            self._queue.clear()
-            self._social = 0
+            self.flushing = flush
+            if not flush:
+                self._queue.clear()
+                self._social = 0
         self._wake.set()
 
     @property
@@ -107,12 +112,12 @@ class Connection:
             while not self._queue and self.close_code is None:
                 self._wake.clear()
                 await self._wake.wait()
-            if self.close_code is not None:
+            if self.close_code is not None and not (self.flushing and self._queue):
                 return
             self._sending_since = loop.time()
             try:
                 for _ in range(len(self._queue)):
-                    if not self._queue or self.close_code is not None:
+                    if not self._queue or (self.close_code is not None and not self.flushing):
                         break
                     text, priority = self._queue.popleft()
                     self._social -= priority == SOCIAL

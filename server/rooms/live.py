@@ -149,6 +149,9 @@ class LiveRoom:
     def broadcast_presence(self) -> None:
         """Who is here. At most one every `presence_interval`: the rest of a burst of joins
         and leaves (a crowd reconnecting in a loop) is summed up in one trailing message."""
+        if self.settings.presence_interval <= 0:
+            self._send_presence()
+            return
         if self._presence_timer is not None:
             return  # a summary is already due
         loop = asyncio.get_running_loop()
@@ -162,7 +165,8 @@ class LiveRoom:
         self._presence_timer = None
         if self.closed:
             return
-        self._last_presence = asyncio.get_running_loop().time()
+        if self.settings.presence_interval > 0:
+            self._last_presence = asyncio.get_running_loop().time()
         presence = Presence(
             players=self.room.players_info(),
             spectators=self.room.spectators,

@@ -38,6 +38,7 @@ def test_create_room_returns_short_unguessable_id(client):
         "race_to": 5,
         "shot_clock": 30.0,
         "seats": 2,
+        "listed": True,
     }
     assert body["url"] == f"/r/{body['room_id']}"
     assert create_room(client) != create_room(client)
@@ -58,7 +59,7 @@ def test_create_room_returns_short_unguessable_id(client):
 )
 def test_create_room_refuses_bad_bodies(client, body):
     assert client.post("/api/rooms", json=body).status_code == 422
-    assert client.get("/api/rooms").json() == {"rooms": []}
+    assert client.get("/api/rooms").json() == {"rooms": [], "total": 0, "next": None}
 
 
 def test_shot_clock_below_minimum_is_refused(settings):
@@ -172,7 +173,7 @@ def test_openapi_documents_the_endpoints(client):
 def test_web_client_is_served_at_root_and_room_links(client):
     index = client.get("/")
     assert index.status_code == 200 and "lobby" in index.text
-    assert client.get("/app.js").text.startswith("export")
+    assert client.get("/js/app.js").text.startswith("export")
     room_id = create_room(client)
     link = client.get(f"/r/{room_id}")
     assert link.status_code == 200 and link.text == index.text

@@ -17,10 +17,11 @@ from server.config import Settings
 from server.engine import Shot, Table, rack, simulate
 from tests.support.games import EIGHT_BALL
 from tests.support.live import live_server
+from tests.support.settings import UNLIMITED
 
 ARTIFACTS = Path(__file__).resolve().parents[2] / "artifacts"
 CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking"]
-E2E_SETTINGS = Settings(pace=2.0)
+E2E_SETTINGS = Settings(pace=2.0, **UNLIMITED)
 
 
 @pytest.fixture(scope="package")

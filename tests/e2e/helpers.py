@@ -3,15 +3,29 @@
 from __future__ import annotations
 
 import hashlib
+import time
 
 from playwright.sync_api import Page
 
 READY = "window.__pool && window.__pool.ready"
+POLL_MS = 50
+
+
+def wait_for(page: Page, expression: str, arg: object = None, timeout: float = 30_000) -> None:
+    """Wait until `expression` (or the function it is, called with `arg`) is truthy in the
+    page. Playwright's `wait_for_function` evaluates strings inside the page, which the
+    page's Content-Security-Policy (no eval) refuses; `evaluate` goes through the debugger
+    protocol, so it is polled here instead."""
+    deadline = time.monotonic() + timeout / 1000
+    while not page.evaluate(expression, arg):
+        if time.monotonic() > deadline:
+            raise TimeoutError(f"not true within {timeout:.0f} ms: {expression}")
+        page.wait_for_timeout(POLL_MS)
 
 
 def wait_ready(page: Page, phase: str | None = None, timeout: float = 30_000) -> None:
     cond = READY + (f" && window.__pool.state.phase === '{phase}'" if phase else "")
-    page.wait_for_function(cond, timeout=timeout)
+    wait_for(page, cond, timeout=timeout)
 
 
 def table_point(page: Page, x: float, y: float) -> tuple[float, float]:

@@ -14,6 +14,8 @@ from tests.support.live import http, ws_url
 from tests.support.messages import JsonSocket, receive_until
 from tests.support.rooms import play_shot, seated_room
 
+from .helpers import wait_for
+
 SHOTS = [BREAK, EIGHT_BALL_SCRATCH]
 REPLAY_READY = "window.__replay && window.__replay.ready && window.__replay.match"
 
@@ -54,7 +56,7 @@ def test_a_finished_match_is_listed_and_replayed_shot_by_shot(base_url, new_page
     entry.get_by_test_id("watch-match").click()
     page.wait_for_url(f"{base_url}/m/{match_id}")
     expect(page.get_by_test_id("replay-view")).to_be_visible()
-    page.wait_for_function(REPLAY_READY)
+    wait_for(page, REPLAY_READY)
     expect(page.get_by_test_id("replay-title")).to_contain_text("Ana vs Ben")
     expect(page.get_by_test_id("replay-shot")).to_have_text("shot 1 / 2")
 
@@ -64,9 +66,10 @@ def test_a_finished_match_is_listed_and_replayed_shot_by_shot(base_url, new_page
     page.get_by_test_id("replay-speed").select_option("4")
     page.get_by_test_id("replay-play").click()
     expect(page.get_by_test_id("replay-play")).to_have_text("Stop")
-    page.wait_for_function("window.__replay.framesSeen > 5")
+    wait_for(page, "window.__replay.framesSeen > 5")
     cue_start = next(b for b in rack if b["id"] == 0)
-    page.wait_for_function(
+    wait_for(
+        page,
         "([x, y]) => { const c = window.__replay.balls.find((b) => b.id === 0);"
         " return !c || Math.hypot(c.x - x, c.y - y) > 0.2; }",
         arg=[cue_start["x"], cue_start["y"]],

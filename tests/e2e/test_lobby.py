@@ -7,7 +7,7 @@ import re
 
 from playwright.sync_api import expect
 
-from .helpers import table_point, wait_ready
+from .helpers import table_point, wait_for, wait_ready
 
 
 def test_lobby_lists_tables_to_join_or_watch_and_remembers_the_name(base_url, new_page):
@@ -65,9 +65,46 @@ def test_ball_in_hand_drag_places_the_cue_ball(base_url, new_page):
     page.mouse.down()
     page.mouse.move(*target, steps=8)
     page.mouse.up()
-    page.wait_for_function(
+    wait_for(
+        page,
         "(() => { const c = window.__pool.state.balls.find((b) => b.id === 0);"
         " return c && Math.abs(c.x - 0.4) < 0.01 && Math.abs(c.y - 0.3) < 0.01; })()",
         timeout=5000,
     )
     assert page.evaluate("window.__pool.shotsSeen") == 0, "placing is not a shot"
+
+
+CATCH_VIOLATIONS = """
+window.__csp = [];
+document.addEventListener('securitypolicyviolation',
+  (e) => window.__csp.push(e.violatedDirective + ' ' + e.blockedURI));
+"""
+
+
+def test_a_private_table_plays_under_the_security_policy(base_url, new_page):
+    """The page runs under its Content-Security-Policy (no inline script, no eval) without
+    a single violation, and a private table is reached by its link, not the lobby."""
+    ana = new_page()
+    ana.add_init_script(CATCH_VIOLATIONS)
+    response = ana.goto(base_url + "/")
+    assert response is not None
+    assert "script-src 'self'" in response.headers["content-security-policy"]
+    ana.get_by_test_id("name").fill("Ana")
+    ana.get_by_test_id("private-table").check()
+    ana.get_by_test_id("create-room").click()
+    ana.wait_for_url(re.compile(r"/r/[A-Za-z0-9_-]+$"))
+    room_id = ana.url.rsplit("/", 1)[1]
+    wait_ready(ana, "waiting")
+
+    ben = new_page()
+    ben.add_init_script(CATCH_VIOLATIONS)
+    ben.goto(base_url + "/")
+    ben.get_by_test_id("name").fill("Ben")
+    expect(ben.get_by_test_id("rooms")).not_to_contain_text("Ana vs free seat")
+    assert ben.locator(f"li[data-room='{room_id}']").count() == 0
+    ben.goto(f"{base_url}/r/{room_id}")  # the link Ana sent
+    ben.get_by_test_id("join-name").fill("Ben")
+    ben.get_by_test_id("join").click()
+    wait_ready(ben, "aiming")
+    wait_ready(ana, "aiming")
+    assert ana.evaluate("window.__csp") == [] and ben.evaluate("window.__csp") == []

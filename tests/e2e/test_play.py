@@ -14,7 +14,7 @@ from playwright.sync_api import expect
 
 from tests.support.games import EIGHT_BALL_BREAK_SAYS
 
-from .helpers import aim_and_shoot, canvas_digest, table_point, wait_ready
+from .helpers import aim_and_shoot, canvas_digest, table_point, wait_for, wait_ready
 
 
 def test_break_seen_by_both_players_and_a_spectator_then_reload_rejoins(
@@ -77,14 +77,12 @@ def test_break_seen_by_both_players_and_a_spectator_then_reload_rejoins(
     tx, ty = table_point(ana, apex["x"], apex["y"])
     ana.mouse.move(tx, ty - 40)
     ana.mouse.move(tx, ty, steps=5)
-    ben.wait_for_function(
-        "window.__pool.state.aim && window.__pool.state.aim.seat === 0", timeout=5000
-    )
+    wait_for(ben, "window.__pool.state.aim && window.__pool.state.aim.seat === 0", timeout=5000)
     aim_and_shoot(ana, (apex["x"], apex["y"]))
 
     # The balls roll on every page: the canvas keeps changing while the stream plays.
     for page in pages.values():
-        page.wait_for_function("window.__pool.playing", timeout=10_000)
+        wait_for(page, "window.__pool.playing", timeout=10_000)
     changes = {name: set() for name in pages}
     for _ in range(4):
         for name, page in pages.items():
@@ -95,7 +93,8 @@ def test_break_seen_by_both_players_and_a_spectator_then_reload_rejoins(
 
     # The shot ends: the outcome is written and the turn indicator names who plays next.
     for page in pages.values():
-        page.wait_for_function(
+        wait_for(
+            page,
             "window.__pool.state.phase === 'aiming' && !window.__pool.playing"
             " && window.__pool.shotsSeen >= 1",
             timeout=30_000,

@@ -145,3 +145,26 @@ def test_social_messages_never_cost_a_player_the_game_or_the_socket():
     for i in range(5):
         game_only.push(f"state {i}")
     assert game_only.close_code == CLOSE_TOO_SLOW  # only the game's own backlog closes
+
+
+def test_a_flood_close_still_delivers_the_replies_owed(tmp_path: Path):
+    settings = Settings(
+        web_dir=tmp_path,
+        db_path=tmp_path / "pool.db",
+        rate_burst=5,
+        rate_per_second=0.01,
+        presence_interval=0.0,
+    )
+    with TestClient(create_app(settings)) as client:
+        room_id = client.post("/api/rooms", json={"game": "practice"}).json()["room_id"]
+        with client.websocket_connect(f"/ws/rooms/{room_id}") as fan:
+            for _ in range(3):
+                fan.receive_json()  # welcome, state, presence
+            for i in range(6):  # the sixth is one too many
+                fan.send_json({"type": "ping", "id": i})
+            pongs = []
+            with pytest.raises(WebSocketDisconnect) as closed:
+                while True:
+                    pongs.append(fan.receive_json()["id"])
+    assert pongs == [0, 1, 2, 3, 4]
+    assert (closed.value.code, closed.value.reason) == (1008, "rate_limited")

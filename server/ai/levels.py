@@ -1,0 +1,67 @@
+"""The computer's levels: how well it executes (the noise `Bot.execute` applies) and how much
+it searches (simulations per turn).
+
+The top level executes with the noise of the computational-pool tournaments (FastFiz:
+sigma aim 0.125 degrees, sigma speed 0.075 m/s, sigma tip offset 0.5 mm). Each level plans
+under its own noise, so a weak level knows it misses long shots and plays easier ones.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from server.engine import BALL_RADIUS
+
+
+@dataclass(frozen=True)
+class Level:
+    """One level of play.
+
+    aim_deg / speed / tip_mm: the standard deviations of the execution error (degrees,
+    m/s, millimetres of tip offset on each axis). pairs: (ball, pocket) pairs tried per
+    turn; speeds / tips: stroke variants of each; refine: variants sampled under noise;
+    samples: noisy simulations per refined variant; safeties: whether it plays safe on
+    purpose (a level without them still finds a legal hit when it has no pot);
+    placements: ball-in-hand spots searched in full; position: weight of the position left;
+    confirm / confirm_samples: the best few variants sampled again on fresh draws;
+    budget: simulations per turn at most (it bounds the plan time); lookahead: how many of
+    the best pots get a simulated search of the next shot from the table they leave.
+    """
+
+    name: str
+    aim_deg: float
+    speed: float
+    tip_mm: float
+    pairs: int
+    speeds: int
+    tips: int
+    refine: int
+    samples: int
+    safeties: bool
+    placements: int
+    position: float
+    confirm: int = 0
+    confirm_samples: int = 0
+    budget: int = 1000
+    lookahead: int = 0
+
+    @property
+    def aim(self) -> float:
+        """Aim sigma in radians."""
+        return math.radians(self.aim_deg)
+
+    @property
+    def tip(self) -> float:
+        """Tip sigma as a fraction of the ball radius (the unit of `Shot.tip`)."""
+        return self.tip_mm * 1e-3 / BALL_RADIUS
+
+
+LEVEL_TABLE: tuple[Level, ...] = (
+    Level("beginner", 1.5, 0.30, 3.0, 4, 2, 1, 3, 4, False, 1, 0.2, budget=200),
+    Level("amateur", 0.7, 0.18, 2.0, 6, 3, 3, 4, 6, True, 2, 0.6, budget=350),
+    Level("club", 0.35, 0.11, 1.0, 8, 3, 3, 6, 10, True, 3, 1.0, 2, 10, 550, 2),
+    Level("pro", 0.125, 0.075, 0.5, 12, 4, 5, 10, 20, True, 3, 1.0, 3, 40, 750, 5),
+)
+LEVELS: tuple[str, ...] = tuple(level.name for level in LEVEL_TABLE)
+BY_NAME: dict[str, Level] = {level.name: level for level in LEVEL_TABLE}

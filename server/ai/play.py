@@ -1,0 +1,44 @@
+"""Playing a planned `Turn` on a `Game` through the rules' own actions, as a room would."""
+
+from __future__ import annotations
+
+from typing import Protocol
+
+from server.engine import Shot, ShotResult, simulate
+from server.rules import Game, Outcome
+
+from .bot import NormalSource, Turn
+
+
+class Executor(Protocol):
+    def execute(self, shot: Shot, rng: NormalSource) -> Shot: ...
+
+
+def play_turn(
+    game: Game,
+    seat: int,
+    turn: Turn,
+    bot: Executor | None = None,
+    rng: NormalSource | None = None,
+) -> tuple[Outcome | None, ShotResult | None]:
+    """Apply `turn` for `seat` to `game` (changing it): the decision, or the push out, the
+    placement, the call and the shot (with `bot.execute(shot, rng)` when both are given).
+    Returns the shot's outcome and result (None, None for a decision). Every step goes
+    through the rules, so an illegal turn raises `IllegalActionError`."""
+    if turn.decision is not None:
+        game.decide(seat, turn.decision)
+        return None, None
+    if turn.shot is None:
+        raise ValueError("the turn has neither a decision nor a shot")
+    if turn.push_out:
+        game.declare_push_out(seat)
+    if turn.place is not None:
+        game.place_cue(seat, *turn.place)
+    if turn.call is not None and game.requires_call:
+        game.call_pocket(seat, turn.call)
+    shot = turn.shot
+    if bot is not None and rng is not None:
+        shot = bot.execute(shot, rng)
+    game.check_shot(seat)
+    result = simulate(game.table, game.balls, shot)
+    return game.apply(seat, result), result

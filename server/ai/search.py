@@ -1,0 +1,387 @@
+"""The shot search: candidate strokes simulated with the engine, without and then with the
+level's execution noise, each outcome judged by the game's own rules and scored by what it
+leaves (the best next shot for whoever plays next).
+
+Values are on one scale, from -1 (the game is lost) to +1 (won): keeping the table scores
+by the chance of the next pot, giving it up scores against the opponent's best chance, a
+foul gives the opponent ball in hand.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from server.engine import CUE, MAX_SPEED, MAX_TIP, BallSet, Shot, Table, simulate
+from server.rules.kinds import GameRules
+from server.rules.position import Position
+from server.rules.ruling import Ruling
+from server.rules.shotfacts import shot_facts
+from server.rules.spotting import respot
+
+from .geometry import MIN_AIM_SIGMA, PotOption, best_chance, open_share, pot_options, speed_for
+from .levels import Level
+
+WIN, LOSS = 1.0, -1.0
+FOUL = -0.6  # the opponent has ball in hand
+KEEP_BASE, KEEP_SCALE = 0.15, 0.8  # value of keeping the table: base + scale * next chance
+GIVE_BASE, GIVE_SCALE = -0.1, 0.6  # value of giving it up: base - scale * opponent chance
+OPEN_WEIGHT = 0.45  # share of the position score given to how open the own balls are
+PROGRESS = 0.03  # per own ball pocketed
+SAFETY_BELOW = 0.3
+LOOK_PAIRS, LOOK_SPEEDS, LOOK_TIPS = 4, 2, 3  # the next-shot search of the lookahead
+LOOK_SIMS = (
+    LOOK_PAIRS * LOOK_SPEEDS * LOOK_TIPS + 1
+)  # look for a safety when the best pot is worth less than this
+TIPS = ((0.0, 0.0), (0.0, 0.35), (0.0, -0.35), (0.3, 0.15), (-0.3, 0.15))
+SPEED_FACTORS = (1.0, 1.8, 3.0, 4.6)
+SAFETY_SPEEDS = (0.7, 1.4, 2.6)
+KICK_SPEEDS = (1.5, 2.6, 4.0)
+KICK_OFFSETS = (-2.0, -0.8, 0.0, 0.8, 2.0)  # degrees off the mirror-image line
+SWEEP_SPEEDS = (1.6, 3.2)
+SWEEP_ANGLES = 40
+
+
+def clamp_shot(angle: float, speed: float, side: float, height: float) -> Shot:
+    """A valid `Shot` near the given values: speed within (0, MAX_SPEED], tip within MAX_TIP."""
+    speed = min(max(speed, 0.05), MAX_SPEED)
+    norm = math.hypot(side, height)
+    if norm > MAX_TIP:
+        k = MAX_TIP / norm * (1 - 1e-9)
+        side, height = side * k, height * k
+    return Shot(math.remainder(angle, 2 * math.pi), speed, (side, height))
+
+
+def perturb(shot: Shot, noise: np.ndarray, level: Level) -> Shot:
+    """`shot` with standard-normal errors `noise` (aim, speed, side, height) at `level`."""
+    side, height = shot.tip
+    return clamp_shot(
+        shot.angle + float(noise[0]) * level.aim,
+        shot.speed + float(noise[1]) * level.speed,
+        side + float(noise[2]) * level.tip,
+        height + float(noise[3]) * level.tip,
+    )
+
+
+@dataclass
+class Candidate:
+    """A stroke being considered. value0: its score without noise; value: with noise."""
+
+    shot: Shot
+    call: int | None
+    kind: str  # "pot", "safety", "kick", "break", "push"
+    target: int | None = None
+    pocket: int | None = None
+    prior: float = 0.0
+    value0: float = -math.inf
+    value: float = -math.inf
+    pot_rate: float = 0.0
+
+
+@dataclass
+class Search:
+    """One turn's search: the position the shot is played from and the level's budget."""
+
+    table: Table
+    rules: GameRules
+    pos: Position
+    seat: int
+    level: Level
+    noise: np.ndarray  # (samples, 4) standard normals, shared by every candidate
+    confirm_noise: np.ndarray  # fresh draws for the second look at the best few
+    sims: int = 0
+    limit: int = 1 << 30  # simulations allowed up to now (the level's budget per turn)
+
+    # --- targets and values -----------------------------------------------------------
+    def targets(self, pos: Position) -> list[int]:
+        legal = self.rules.legal_targets(pos)
+        return legal if legal else pos.object_balls
+
+    def plan_sigma(self) -> float:
+        return self.level.aim
+
+    def chance_for(self, pos: Position, balls: BallSet) -> float:
+        return best_chance(self.table, balls, self.targets(pos), self.plan_sigma())
+
+    def after(self, pos: Position, ruling: Ruling, final: BallSet, turn: int) -> Position:
+        groups = pos.groups
+        if ruling.groups:
+            groups = tuple(ruling.groups[s] for s in range(len(pos.players)))
+        return replace(
+            pos,
+            on_table=tuple(final.on_table_ids()),
+            turn=turn,
+            breaking=False,
+            groups=groups,
+            called_pocket=None,
+            push_out_declared=False,
+        )
+
+    def outcome(
+        self, pos: Position, before: BallSet, shot: Shot
+    ) -> tuple[float, bool, Ruling, BallSet]:
+        """Simulate `shot` from `before` played in `pos`: (value, pocketed legally, ruling,
+        table after)."""
+        self.sims += 1
+        result = simulate(self.table, before, shot)
+        facts = shot_facts(before, result)
+        ruling = self.rules.judge(pos, facts)
+        final = result.final
+        if ruling.spot:
+            final = respot(self.table, final, ruling.spot)
+        return (
+            self.value_of(pos, ruling, final, facts.pocketed),
+            self._made(ruling, facts.pocketed),
+            ruling,
+            final,
+        )
+
+    def _made(self, ruling: Ruling, pocketed: tuple[int, ...]) -> bool:
+        if ruling.winner is not None:
+            return ruling.winner == self.seat
+        return bool(pocketed) and not ruling.fouls and ruling.continues
+
+    def value_of(
+        self, pos: Position, ruling: Ruling, final: BallSet, pocketed: Iterable[int]
+    ) -> float:
+        me = self.seat
+        level = self.level
+        if ruling.winner is not None:
+            return WIN if ruling.winner == me else LOSS
+        if ruling.decision is not None:
+            if ruling.pending == "push_out":
+                nxt = self.after(pos, ruling, final, ruling.decision.seat)
+                q = self.chance_for(nxt, final)
+                return -0.05 - 0.8 * abs(q - 0.5)
+            return KEEP_BASE if ruling.decision.seat == me else FOUL
+        if ruling.fouls:
+            worse = 0.15 * (pos.fouls_in_row[me] if pos.fouls_in_row else 0)
+            return FOUL - min(worse, 0.3)
+        solo = len(pos.players) == 1
+        if ruling.continues or solo:
+            nxt = self.after(pos, ruling, final, me)
+            q = self.chance_for(nxt, final)
+            mine = set(self.targets(pos))
+            progress = PROGRESS * sum(1 for b in pocketed if b in mine)
+            w = level.position
+            spread = open_share(self.table, final, self.targets(nxt))
+            quality = (1 - OPEN_WEIGHT) * q + OPEN_WEIGHT * spread
+            keep = KEEP_BASE + KEEP_SCALE * (w * quality + (1 - w) * 0.5) + progress
+            if solo and not ruling.continues:
+                return keep - 0.3
+            return keep
+        other = 1 - me
+        if not level.safeties:
+            return GIVE_BASE - GIVE_SCALE * 0.5
+        nxt = self.after(pos, ruling, final, other)
+        q_opp = self.chance_for(nxt, final)
+        return GIVE_BASE - GIVE_SCALE * q_opp
+
+    # --- evaluation -------------------------------------------------------------------
+    def pos_for(self, cand: Candidate) -> Position:
+        return replace(self.pos, called_pocket=cand.call) if cand.call is not None else self.pos
+
+    def score0(self, balls: BallSet, cand: Candidate) -> None:
+        cand.value0, _, _, _ = self.outcome(self.pos_for(cand), balls, cand.shot)
+
+    def score_noisy(self, balls: BallSet, cand: Candidate) -> None:
+        pos = self.pos_for(cand)
+        total, made = 0.0, 0
+        for row in self.noise:
+            value, ok, _, _ = self.outcome(pos, balls, perturb(cand.shot, row, self.level))
+            total += value
+            made += ok
+        n = max(len(self.noise), 1)
+        cand.value, cand.pot_rate = total / n, made / n
+
+    def refine(self, balls: BallSet, cands: list[Candidate], keep: int) -> list[Candidate]:
+        """Score every candidate without noise, then the best `keep` under noise; within
+        the simulations left before `limit` (candidates come best first)."""
+        room = self.limit - self.sims
+        cands = cands[: max(keep, room // 2)]
+        for cand in cands:
+            self.score0(balls, cand)
+        cands.sort(key=lambda c: -(c.value0 + 0.5 * c.prior))
+        room = self.limit - self.sims
+        keep = max(1, min(keep, room // max(len(self.noise), 1)))
+        chosen = cands[:keep]
+        for cand in chosen:
+            self.score_noisy(balls, cand)
+        chosen.sort(key=lambda c: -c.value)
+        room = self.limit - self.sims
+        if self.level.confirm and len(chosen) > 1 and room >= len(self.confirm_noise) * 2:
+            # The best few again on fresh draws: the first scores favour lucky candidates.
+            first = self.noise
+            self.noise = self.confirm_noise
+            try:
+                for cand in chosen[: self.level.confirm]:
+                    before, rate = cand.value, cand.pot_rate
+                    self.score_noisy(balls, cand)
+                    n0, n1 = len(first), len(self.confirm_noise)
+                    cand.value = (before * n0 + cand.value * n1) / (n0 + n1)
+                    cand.pot_rate = (rate * n0 + cand.pot_rate * n1) / (n0 + n1)
+            finally:
+                self.noise = first
+            head = sorted(chosen[: self.level.confirm], key=lambda c: -c.value)
+            chosen = head + chosen[self.level.confirm :]
+        if self.level.lookahead and chosen and chosen[0].kind == "pot":
+            for cand in chosen[: self.level.lookahead]:
+                self.look_ahead(balls, cand)
+            chosen.sort(key=lambda c: -c.value)
+        return chosen
+
+    def look_ahead(self, balls: BallSet, cand: Candidate) -> None:
+        """Replace the quick estimate of the position a pot leaves by a search of the next
+        shot from the table the shot leaves without noise (when it pockets there)."""
+        if self.limit - self.sims < LOOK_SIMS:
+            return
+        pos = self.pos_for(cand)
+        value0, made, ruling, final = self.outcome(pos, balls, cand.shot)
+        if not made or ruling.winner is not None:
+            return
+        nxt = self.after(pos, ruling, final, self.seat)
+        sigma = max(self.plan_sigma(), MIN_AIM_SIGMA)
+        options = pot_options(self.table, final, self.targets(nxt), sigma)[:LOOK_PAIRS]
+        needs_call = self.rules.requires_call(nxt)
+        give = GIVE_BASE - GIVE_SCALE * 0.4
+        best = give
+        for option in options:
+            base = speed_for(option)
+            for factor in SPEED_FACTORS[:LOOK_SPEEDS]:
+                for side, height in TIPS[:LOOK_TIPS]:
+                    speed = min(base * factor, 0.85 * MAX_SPEED)
+                    shot = clamp_shot(option.angle, speed, side, height)
+                    after = replace(nxt, called_pocket=option.pocket) if needs_call else nxt
+                    saved, self.seat = self.seat, nxt.turn
+                    try:
+                        v, ok, _, _ = self.outcome(after, final, shot)
+                    finally:
+                        self.seat = saved
+                    est = option.chance * v + (1 - option.chance) * give if ok else give
+                    best = max(best, est)
+        cand.value += cand.pot_rate * (best - value0)
+
+    # --- candidates -------------------------------------------------------------------
+    def pot_candidates(self, balls: BallSet, pairs: int) -> list[Candidate]:
+        options = pot_options(self.table, balls, self.targets(self.pos), self.plan_sigma())
+        needs_call = self.rules.requires_call(self.pos)
+        out = []
+        for option in options[:pairs]:
+            out.extend(self._variants(option, needs_call))
+        return out
+
+    def _variants(self, option: PotOption, needs_call: bool) -> list[Candidate]:
+        base = speed_for(option)
+        out = []
+        for factor in SPEED_FACTORS[: self.level.speeds]:
+            for side, height in TIPS[: self.level.tips]:
+                out.append(
+                    Candidate(
+                        clamp_shot(
+                            option.angle, min(base * factor, 0.85 * MAX_SPEED), side, height
+                        ),
+                        option.pocket if needs_call else None,
+                        "pot",
+                        option.target,
+                        option.pocket,
+                        option.chance,
+                    )
+                )
+        return out
+
+    def safety_candidates(self, balls: BallSet) -> list[Candidate]:
+        """Hits on each legal ball, full to thin, soft to firm."""
+        cue = np.array(balls.position_of(CUE))
+        r = self.table.ball_radius
+        call = self.default_call(balls)
+        out = []
+        on = set(balls.on_table_ids())
+        targets = [t for t in self.targets(self.pos) if t in on]
+        targets.sort(key=lambda t: float(np.linalg.norm(np.array(balls.position_of(t)) - cue)))
+        for t in targets[:4]:
+            obj = np.array(balls.position_of(t))
+            dx, dy = obj - cue
+            dist = max(math.hypot(dx, dy), 2 * r + 1e-6)
+            direct = math.atan2(dy, dx)
+            for frac in (-0.8, -0.4, 0.0, 0.4, 0.8):
+                offset = math.asin(max(-1.0, min(1.0, frac * 2 * r / dist)))
+                for speed in SAFETY_SPEEDS:
+                    shot = clamp_shot(direct + offset, speed, 0.0, 0.0)
+                    out.append(Candidate(shot, call, "safety", t))
+        return out
+
+    def kick_candidates(self, balls: BallSet) -> list[Candidate]:
+        """Kicks: aim at the mirror images of each legal ball in one cushion, and in two
+        (round a corner), with small corrections for the cushion's loss of pace."""
+        table = self.table
+        r = table.ball_radius
+        lo_x, hi_x, lo_y, hi_y = r, table.length - r, r, table.width - r
+        cx, cy = balls.position_of(CUE)
+        call = self.default_call(balls)
+        on = set(balls.on_table_ids())
+        targets = [t for t in self.targets(self.pos) if t in on]
+        targets.sort(key=lambda t: math.dist(balls.position_of(t), (cx, cy)))
+        out = []
+        for t in targets[:3]:
+            ox, oy = balls.position_of(t)
+            mx = (2 * lo_x - ox, 2 * hi_x - ox)
+            my = (2 * lo_y - oy, 2 * hi_y - oy)
+            images = [(x, oy, 1) for x in mx] + [(ox, y, 1) for y in my]
+            images += [(x, y, 2) for x in mx for y in my]
+            for ix, iy, rails in images:
+                direct = math.atan2(iy - cy, ix - cx)
+                offsets = KICK_OFFSETS if rails == 1 else KICK_OFFSETS[1:-1]
+                speeds = KICK_SPEEDS if rails == 1 else KICK_SPEEDS[1:]
+                for off in offsets:
+                    for speed in speeds:
+                        shot = clamp_shot(direct + math.radians(off), speed, 0.0, 0.0)
+                        out.append(Candidate(shot, call, "kick", t))
+        return out
+
+    def sweep_candidates(
+        self, balls: BallSet, speeds: tuple[float, ...] = SWEEP_SPEEDS
+    ) -> list[Candidate]:
+        """A sweep of directions all round the cue ball (the last resort, and push outs)."""
+        call = self.default_call(balls)
+        out = []
+        for k in range(SWEEP_ANGLES):
+            angle = 2 * math.pi * k / SWEEP_ANGLES
+            for speed in speeds:
+                out.append(Candidate(clamp_shot(angle, speed, 0.0, 0.0), call, "kick"))
+        return out
+
+    def default_call(self, balls: BallSet) -> int | None:
+        """The pocket to call when the shot played is not a pot (the 8's easiest pocket)."""
+        if not self.rules.requires_call(self.pos):
+            return None
+        options = pot_options(self.table, balls, self.targets(self.pos), self.plan_sigma())
+        if options:
+            return options[0].pocket
+        eight = [t for t in self.targets(self.pos) if t in balls.on_table_ids()]
+        if not eight:
+            return 0
+        x, y = balls.position_of(eight[0])
+        centres = [p.center for p in self.table.pockets]
+        return min(range(len(centres)), key=lambda i: math.dist(centres[i], (x, y)))
+
+    # --- the turn ---------------------------------------------------------------------
+    def best_shot(self, balls: BallSet, pairs: int | None = None) -> Candidate:
+        """The best stroke from `balls` (cue ball where it is)."""
+        level = self.level
+        pairs = level.pairs if pairs is None else pairs
+        chosen = self.refine(balls, self.pot_candidates(balls, pairs), level.refine)
+        best = chosen[0] if chosen else None
+        keep = max(2, level.refine // 2) if level.safeties else 1
+        if best is None or (level.safeties and best.value < SAFETY_BELOW):
+            safe = self.refine(balls, self.safety_candidates(balls), keep)
+            for more in (self.kick_candidates, self.sweep_candidates):
+                if safe and safe[0].value > FOUL + 0.2:
+                    break
+                safe = sorted(safe + self.refine(balls, more(balls), keep), key=lambda c: -c.value)
+            if safe and (best is None or safe[0].value > best.value):
+                best = safe[0]
+        assert best is not None  # the sweep always gives candidates
+        return best
