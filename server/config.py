@@ -104,6 +104,8 @@ class Settings(BaseSettings):
     crowd_chat_burst: Annotated[float, Field(ge=1.0, le=1000.0)] = 6.0  # all spectators
     crowd_chat_per_second: Annotated[float, Field(gt=0.0, le=1000.0)] = 1.0
     max_spectators: Annotated[int, Field(ge=0, le=100_000)] = 200
+    # The computer opponent "thinks" at least this long before it shows a turn (at pace 1).
+    computer_pause: Annotated[float, Field(ge=0.0, le=30.0)] = 1.0
     ws_ping_interval: PositiveSeconds = 20.0
     ws_ping_timeout: PositiveSeconds = 20.0
     # permessage-deflate: ~5x less bandwidth, but ~45 % more server CPU at 200 rooms, which

@@ -6,11 +6,13 @@ from typing import Annotated, Any
 
 from fastapi import APIRouter, HTTPException, Query, status
 
+from server.ai import LEVELS
 from server.protocol import LIMITS, Limits
 from server.rooms import ActionError
 
 from .deps import ClientId, Quotas, Registry, RoomDep, SettingsDep
 from .schemas import (
+    ComputerLevels,
     CreateRoom,
     ErrorResponse,
     Health,
@@ -41,6 +43,12 @@ async def health() -> dict[str, Any]:
 async def limits() -> Limits:
     """Every bound a client's messages must respect (also in each socket's `welcome`)."""
     return LIMITS
+
+
+@router.get("/api/computer", response_model=ComputerLevels, tags=["meta"])
+async def computer_levels() -> dict[str, Any]:
+    """The levels the computer opponent plays at, weakest first (`opponent` of a new room)."""
+    return {"levels": list(LEVELS)}
 
 
 @router.get("/api/stats", response_model=ServerStats, tags=["meta"])
@@ -84,7 +92,13 @@ async def create_room(
             },
         )
     try:
-        live = registry.create(body.game, body.race_to, clock, body.listed, owner=client)
+        if body.opponent is not None and body.game == "practice":
+            raise HTTPException(
+                422, {"code": "bad_opponent", "message": "Practice is played alone."}
+            )
+        live = registry.create(
+            body.game, body.race_to, clock, body.listed, owner=client, opponent=body.opponent
+        )
     except ActionError as exc:
         code = 429 if exc.code == "too_many_rooms_open" else 503
         raise HTTPException(code, {"code": exc.code, "message": exc.message}) from None
@@ -96,6 +110,7 @@ async def create_room(
         "shot_clock": room.shot_clock,
         "seats": len(room.seats),
         "listed": room.listed,
+        "opponent": next(iter(room.computer.values()), None),
         "url": f"/r/{room.room_id}",
     }
 

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import BaseModel, ConfigDict, Field, field_validator
 
+from server.ai import LEVELS
 from server.protocol.limits import MAX_NAME
 
 GameKind = Literal["eight_ball", "nine_ball", "practice"]
@@ -22,6 +23,20 @@ class CreateRoom(Strict):
         Annotated[float, Field(ge=0, le=600, description="seconds per shot; 0 = no clock")] | None
     ) = None
     listed: bool = Field(True, description="false: a private table, joined only by its link")
+    opponent: str | None = Field(
+        None, description=f"play the computer at this level: one of {', '.join(LEVELS)}"
+    )
+
+    @field_validator("opponent")
+    @classmethod
+    def _level(cls, value: str | None) -> str | None:
+        if value is not None and value not in LEVELS:
+            raise ValueError(f"the computer plays at one of {', '.join(LEVELS)}")
+        return value
+
+
+class ComputerLevels(BaseModel):
+    levels: list[str]  # weakest first
 
 
 class RoomCreated(BaseModel):
@@ -31,6 +46,7 @@ class RoomCreated(BaseModel):
     shot_clock: float
     seats: int
     listed: bool
+    opponent: str | None  # the computer's level, when it plays the second seat
     url: str
 
 

@@ -7,11 +7,13 @@ pushed into each member's bounded outbox (`Connection`) and its own task sends t
 from __future__ import annotations
 
 import asyncio
+import functools
 import logging
 import math
 import time
 from dataclasses import dataclass
 
+from server.ai import Turn
 from server.config import Settings
 from server.engine import TICK_HZ, BallSet, Shot
 from server.protocol import LIMITS, Timed, message_text
@@ -35,6 +37,7 @@ from server.protocol.outbound import (
 from server.rules import Outcome
 
 from .clock import SYSTEM_CLOCK, Clock
+from .computer import ComputerSeat
 from .connection import CLOSE_REPLACED, Connection
 from .errors import ActionError
 from .metrics import StreamMetrics
@@ -96,6 +99,10 @@ class LiveRoom:
             settings.crowd_chat_burst, settings.crowd_chat_per_second, clock.monotonic
         )
         self._last_presence = -math.inf
+        self.computers = {
+            seat: ComputerSeat(room, seat, level, settings.computer_pause)
+            for seat, level in room.computer.items()
+        }
         self.closed = False
 
     # ---- sending ----------------------------------------------------------------------
@@ -116,7 +123,7 @@ class LiveRoom:
         for conn in list(self.members.values()):
             conn.push(encoded, droppable)
 
-    def relay(self, message: ServerMessage, exclude: Connection) -> None:
+    def relay(self, message: ServerMessage, exclude: Connection | None) -> None:
         """Send to everyone else, without a sequence number, droppable (aim relays)."""
         encoded = text(message)
         for conn in list(self.members.values()):
@@ -246,6 +253,8 @@ class LiveRoom:
             self._stream.cancel()
         if self._presence_timer is not None:
             self._presence_timer.cancel()
+        for computer in self.computers.values():
+            computer.cancel()
         self._cancel_clock()
         for seat in list(self._grace):
             self._cancel_grace(seat)
@@ -320,7 +329,11 @@ class LiveRoom:
                 assert isinstance(msg, Concede)
                 self._conclude("concede", room.concede(seat, msg.game))
             case "rematch":
-                if room.vote_rematch(seat):
+                started = room.vote_rematch(seat)
+                for computer_seat in room.computer:  # the computer always wants another
+                    if not started and computer_seat != seat:
+                        started = room.vote_rematch(computer_seat)
+                if started:
                     for i, s in enumerate(room.seats):
                         if s is not None and not s.connected:
                             self._start_grace(i)
@@ -455,6 +468,37 @@ class LiveRoom:
             self._start_grace(absent)
         self._after_result()
 
+    # ---- the computer -------------------------------------------------------------------
+
+    def _wake_computer(self) -> None:
+        """If the match now waits for a computer seat, let it take its turn."""
+        for seat, computer in self.computers.items():
+            if not self.closed and computer.due():
+                computer.start(
+                    functools.partial(self._computer_acts, seat),
+                    functools.partial(self._computer_aims, seat),
+                    self.settings.pace,
+                )
+
+    def _computer_aims(self, seat: int, angle: float, power: float) -> None:
+        self.relay(AimRelay(seat=seat, angle=angle, power=power, tip=(0.0, 0.0)), None)
+
+    def _computer_acts(self, seat: int, turn: Turn, shot: Shot | None) -> None:
+        """The computer's turn through the same room actions as a person's."""
+        room = self.room
+        if turn.decision is not None:
+            room.decide(seat, turn.decision)
+            self._changed()
+            return
+        if turn.push_out:
+            room.push_out(seat)
+        if turn.place is not None:
+            room.place_cue(seat, *turn.place)
+        if turn.call is not None and room.match is not None and room.match.game.requires_call:
+            room.call_pocket(seat, turn.call)
+        if shot is not None:
+            self.start_shot(seat, shot)
+
     # ---- shot clock ---------------------------------------------------------------------
 
     def clock_info(self) -> ClockInfo | None:
@@ -466,6 +510,7 @@ class LiveRoom:
         )
 
     def _arm_clock(self, restart: bool) -> None:
+        self._wake_computer()
         seat = self.room.acting_seat() if self.room.shot_clock > 0 else None
         if seat is None:
             self._cancel_clock()
@@ -511,6 +556,8 @@ class LiveRoom:
         match = self.room.match
         if self.room.practice or match is None or match.over or seat in self._grace:
             return
+        if seat in self.room.computer:
+            return  # the computer never leaves
         loop = asyncio.get_running_loop()
         grace = self.settings.grace
         self._grace[seat] = _Timer(

@@ -56,6 +56,7 @@ class RoomRegistry:
         shot_clock: float | None = None,
         listed: bool = True,
         owner: str | None = None,
+        opponent: str | None = None,
     ) -> LiveRoom:
         """A new room. `owner` (the client opening it) may hold `max_rooms_per_client`
         rooms at once, so no single client can fill the server; `listed=False` makes a
@@ -81,6 +82,8 @@ class RoomRegistry:
             created_at=self.clock.wall(),
             listed=listed,
         )
+        if opponent is not None:  # the computer takes the second seat at once
+            room.add_computer(opponent)
         live = LiveRoom(room, self.settings, self.observer, self.clock)
         self._share(live)
         self.rooms[room_id] = live

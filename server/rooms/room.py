@@ -90,6 +90,7 @@ class Room:
     seed: int = field(default_factory=lambda: secrets.randbelow(2**31))
     created_at: float = 0.0
     listed: bool = True  # False: a private table, reached only through its link
+    computer: dict[int, str] = field(default_factory=dict)  # seat -> level it plays at
     seats: list[Seat | None] = field(init=False)
     match: Match | None = field(default=None, init=False)
     shot: ShotInProgress | None = field(default=None, init=False)
@@ -126,9 +127,25 @@ class Room:
             )
         token = new_token()
         self.seats[free] = Seat(clean, hash_token(token))
+        self._start_when_full()
+        return free, token
+
+    def _start_when_full(self) -> None:
         if all(self.seats):
             self.match = Match(self.game, self.player_names(), race_to=self.race_to, seed=self.seed)
-        return free, token
+
+    def add_computer(self, level: str) -> int:
+        """Seat the computer (always connected: it never leaves) at `level`."""
+        if self.practice:
+            raise ActionError("not_allowed", "Practice is played alone.")
+        free = [i for i, s in enumerate(self.seats) if s is None]
+        if not free:
+            raise ActionError("room_full", "Both seats are taken.")
+        seat = free[-1]  # the last seat: a person joining takes the first and breaks
+        self.seats[seat] = Seat(f"Computer ({level})", hash_token(new_token()), connected=True)
+        self.computer[seat] = level
+        self._start_when_full()
+        return seat
 
     def seat_of(self, token: str) -> int | None:
         """The seat this token opens, or None. Compares every seat in constant time."""

@@ -10,7 +10,7 @@ every other stored type.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Literal
 
 from server.codec import from_data, to_data
@@ -45,6 +45,7 @@ class SavedRoomData:
     rematch_votes: list[int]
     pending: PendingShot | None
     listed: bool = True
+    computer: dict[int, str] = field(default_factory=dict)  # seat -> level
 
 
 @dataclass(frozen=True)
@@ -77,6 +78,7 @@ def room_to_snapshot(
         rematch_votes=sorted(room.rematch_votes),
         pending=pending,
         listed=room.listed,
+        computer=dict(room.computer),
     )
     result: dict[str, Any] = to_data(data)
     return result
@@ -97,6 +99,11 @@ def room_from_snapshot(data: dict[str, Any]) -> SavedRoom:
         listed=saved.listed,
     )
     room.seats = [None if s is None else Seat(s.name, s.token_hash) for s in saved.seats]
+    room.computer = dict(saved.computer)
+    for seat in room.computer:  # the computer never leaves
+        seat_info = room.seats[seat]
+        if seat_info is not None:
+            seat_info.connected = True
     room.match = Match.from_dict(saved.match) if saved.match is not None else None
     room.shots_played = saved.shots_played
     room.rematch_votes = set(saved.rematch_votes)

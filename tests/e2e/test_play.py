@@ -140,3 +140,25 @@ def test_break_seen_by_both_players_and_a_spectator_then_reload_rejoins(
     expect(ben.get_by_test_id("connection")).to_have_text("open")
     expect(ben.get_by_test_id("outcome")).to_have_text(outcome)
     assert ben.evaluate("window.__pool.state.me.seat") == 1
+
+
+def test_a_game_against_the_computer_from_the_lobby(base_url, new_page, artifacts):
+    """Alone in the lobby: pick the computer as the opponent; it takes the second seat, and
+    after Ana's break it is seen playing its own turn."""
+    ana = new_page()
+    ana.goto(base_url + "/")
+    ana.get_by_test_id("name").fill("Ana")
+    ana.get_by_test_id("game-select").select_option("eight_ball")
+    expect(ana.get_by_test_id("opponent")).to_contain_text("The computer: beginner")
+    ana.get_by_test_id("opponent").select_option("beginner")
+    ana.get_by_test_id("create-room").click()
+    ana.wait_for_url(re.compile(r"/r/[A-Za-z0-9_-]+$"))
+    wait_ready(ana, "aiming")
+    expect(ana.get_by_test_id("player-1")).to_contain_text("Computer (beginner)")
+    expect(ana.get_by_test_id("turn")).to_contain_text("Your turn")
+    foot = ana.evaluate("window.__pool.state.table.foot_spot")
+    aim_and_shoot(ana, (foot[0], foot[1]), pull_px=40)  # a soft break: not a legal one
+    computer_shot = "window.__pool.state.lastResult?.outcome?.shooter === 1"
+    wait_for(ana, computer_shot, timeout=90_000)  # the computer played its own shot
+    wait_for(ana, "window.__pool.shotsSeen >= 2", timeout=30_000)  # and it was shown
+    ana.get_by_test_id("table").screenshot(path=str(artifacts / "computer.png"))

@@ -47,10 +47,13 @@ export const api = {
    * @param {number} raceTo
    * @param {number} [shotClock]
    * @param {boolean} [listed] false: a private table, reached only through its link
+   * @param {string} [opponent] the computer's level, to play it in the second seat
    */
-  createRoom: (game, raceTo, shotClock, listed = true) => request('POST', '/api/rooms',
-    { game, race_to: raceTo, listed,
-      ...(shotClock !== undefined ? { shot_clock: shotClock } : {}) }),
+  createRoom: (game, raceTo, shotClock, listed = true, opponent = undefined) =>
+    request('POST', '/api/rooms', { game, race_to: raceTo, listed,
+      ...(shotClock !== undefined ? { shot_clock: shotClock } : {}),
+      ...(opponent ? { opponent } : {}) }),
+  computerLevels: () => request('GET', '/api/computer'),
   listRooms: () => request('GET', '/api/rooms'),
   /** @param {string} roomId */
   getRoom: (roomId) => request('GET', `/api/rooms/${encodeURIComponent(roomId)}`),

@@ -15,6 +15,16 @@ export function startLobby() {
   // The name field's length follows the server's limit: the defaults until it answers.
   applyInputLimits(DEFAULT_LIMITS);
   api.limits().then((limits) => applyInputLimits(readLimits(limits)), () => {});
+  // The computer's levels, as the server names them (weakest first).
+  api.computerLevels().then(({ levels }) => {
+    const select = $select('opponent');
+    for (const level of levels) {
+      const option = document.createElement('option');
+      option.value = level;
+      option.textContent = `The computer: ${level}`;
+      select.append(option);
+    }
+  }, () => {});
 
   const nameEl = $input('name');
   nameEl.value = memory.name();
@@ -44,8 +54,11 @@ export function startLobby() {
     const lo = Number(raceEl.min) || 1;
     const raceTo = Math.min(Number(raceEl.max) || lo, Math.max(lo, Number(raceEl.value) || lo));
     try {
-      const listed = !$input('private-table').checked;
-      const room = await api.createRoom($select('game').value, raceTo, undefined, listed);
+      const opponent = $select('opponent').value || undefined;
+      // A game against the computer is nobody else's to join: keep it out of the lobby.
+      const listed = !$input('private-table').checked && !opponent;
+      const room = await api.createRoom($select('game').value, raceTo, undefined, listed,
+        opponent);
       await joinAndGo(room.room_id, name);
     } catch (e) { showError(errorText(e)); }
   });
