@@ -20,9 +20,7 @@ import argparse
 import asyncio
 import contextlib
 import json
-import os
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
@@ -32,36 +30,9 @@ import httpx
 from websockets.asyncio.client import connect
 from websockets.exceptions import ConnectionClosed
 
-from bench.load import free_port, wait_healthy
+from bench.load import free_port, start_server, wait_healthy
 
 TICK_HZ = 120
-
-
-def start(port: int, db: Path, log: Path, extra: dict[str, str]) -> subprocess.Popen:
-    env = {
-        **os.environ,
-        "POOL_DB_PATH": str(db),
-        "POOL_MAX_ROOMS": "5000",
-        "POOL_MAX_SPECTATORS": "500",
-        "POOL_SHOT_CLOCK": "0",
-        **extra,
-    }
-    return subprocess.Popen(
-        [
-            sys.executable,
-            "-m",
-            "server",
-            "--host",
-            "127.0.0.1",
-            "--port",
-            str(port),
-            "--log-level",
-            "warning",
-        ],
-        env=env,
-        stdout=log.open("w"),
-        stderr=subprocess.STDOUT,
-    )
 
 
 class Players:
@@ -168,7 +139,14 @@ async def one_run(flood: str, seconds: float) -> dict:
             if flood == "listing"
             else {}
         )
-        proc = start(port, Path(scratch) / "pool.db", Path(scratch) / "server.log", extra)
+        extra |= {"POOL_MAX_SPECTATORS": "500", "POOL_SHOT_CLOCK": "0"}
+        proc = start_server(
+            port,
+            Path(scratch) / "pool.db",
+            Path(scratch) / "server.log",
+            deflate=False,
+            extra=extra,
+        )
         base = f"http://127.0.0.1:{port}"
         try:
             await wait_healthy(base, proc)

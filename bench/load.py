@@ -114,14 +114,17 @@ def free_port() -> int:
         return sock.getsockname()[1]
 
 
-def start_server(port: int, db: Path, log: Path, deflate: bool) -> subprocess.Popen:
+def start_server(
+    port: int, db: Path, log: Path, deflate: bool, extra: dict[str, str] | None = None
+) -> subprocess.Popen:
     """`deflate`: the server accepts permessage-deflate (`POOL_WS_DEFLATE`), the clients
-    offer it."""
+    offer it. `extra`: more settings for the server's environment."""
     env = {
         **os.environ,
         "POOL_DB_PATH": str(db),
         "POOL_MAX_ROOMS": "5000",
         "POOL_WS_DEFLATE": "1" if deflate else "0",
+        **(extra or {}),
     }
     out = log.open("w")
     return subprocess.Popen(

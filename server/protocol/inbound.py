@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import json
 import math
-from typing import Annotated, Literal
+from typing import Annotated, Literal, get_args
 
 from pydantic import BaseModel, ConfigDict, Field, TypeAdapter, ValidationError, model_validator
 
@@ -137,21 +137,10 @@ AnyClientMessage = Annotated[
     | Ping,
     Field(discriminator="type"),
 ]
+# Every `type` a client may send, read off the union itself.
 CLIENT_TYPES = frozenset(
-    (
-        "shoot",
-        "place_cue",
-        "aim",
-        "call",
-        "decide",
-        "push_out",
-        "rerack",
-        "chat",
-        "rematch",
-        "concede",
-        "sync",
-        "ping",
-    )
+    get_args(model.model_fields["type"].annotation)[0]
+    for model in get_args(get_args(AnyClientMessage)[0])
 )
 _client_adapter: TypeAdapter[AnyClientMessage] = TypeAdapter(AnyClientMessage)
 

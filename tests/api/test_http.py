@@ -39,6 +39,7 @@ def test_create_room_returns_short_unguessable_id(client):
         "shot_clock": 30.0,
         "seats": 2,
         "listed": True,
+        "opponent": None,
     }
     assert body["url"] == f"/r/{body['room_id']}"
     assert create_room(client) != create_room(client)

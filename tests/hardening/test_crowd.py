@@ -7,6 +7,7 @@ from __future__ import annotations
 import asyncio
 import json
 from pathlib import Path
+from urllib.request import Request, urlopen
 
 import pytest
 from websockets.asyncio.client import connect
@@ -113,6 +114,23 @@ async def crowd(address: str, room_id: str, tokens: list[str]) -> tuple[list[int
     return results, closes
 
 
+def seated_on(address: str) -> tuple[str, list[str]]:
+    """An 8-ball room without a clock on the real server, Ana and Ben seated."""
+
+    def post(path: str, body: dict) -> dict:
+        request = Request(
+            f"http://{address}{path}",
+            json.dumps(body).encode(),
+            {"content-type": "application/json"},
+        )
+        return json.loads(urlopen(request, timeout=10).read())
+
+    room_id = post("/api/rooms", {"game": "eight_ball", "shot_clock": 0})["room_id"]
+    return room_id, [
+        post(f"/api/rooms/{room_id}/join", {"name": n})["token"] for n in ("Ana", "Ben")
+    ]
+
+
 def test_a_chatting_churning_crowd_closes_no_player(tmp_path: Path):
     settings = Settings(
         web_dir=tmp_path,
@@ -123,18 +141,7 @@ def test_a_chatting_churning_crowd_closes_no_player(tmp_path: Path):
     )
     app = create_app(settings, seeds=SeedSource.fixed(5))
     with serving(app, settings, bound_socket()) as address:
-        from urllib.request import Request, urlopen
-
-        def post(path: str, body: dict) -> dict:
-            request = Request(
-                f"http://{address}{path}",
-                json.dumps(body).encode(),
-                {"content-type": "application/json"},
-            )
-            return json.loads(urlopen(request, timeout=10).read())
-
-        room_id = post("/api/rooms", {"game": "eight_ball", "shot_clock": 0})["room_id"]
-        tokens = [post(f"/api/rooms/{room_id}/join", {"name": n})["token"] for n in ("Ana", "Ben")]
+        room_id, tokens = seated_on(address)
         results, closes = asyncio.run(crowd(address, room_id, tokens))
     assert closes == []  # no player was closed
     shots = sorted(set(results))
@@ -175,18 +182,7 @@ def test_a_chat_burst_and_a_crowd_vanishing_close_no_player(tmp_path: Path):
     with serving(
         create_app(settings, seeds=SeedSource.fixed(5)), settings, bound_socket()
     ) as address:
-        from urllib.request import Request, urlopen
-
-        def post(path: str, body: dict) -> dict:
-            request = Request(
-                f"http://{address}{path}",
-                json.dumps(body).encode(),
-                {"content-type": "application/json"},
-            )
-            return json.loads(urlopen(request, timeout=10).read())
-
-        room_id = post("/api/rooms", {"game": "eight_ball", "shot_clock": 0})["room_id"]
-        tokens = [post(f"/api/rooms/{room_id}/join", {"name": n})["token"] for n in ("Ana", "Ben")]
+        room_id, tokens = seated_on(address)
         results, closes = asyncio.run(burst(address, room_id, tokens))
     assert closes == []
     shots = sorted(set(results))  # the last one may be stopped between the two players

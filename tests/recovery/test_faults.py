@@ -15,6 +15,7 @@ import websockets
 from websockets.exceptions import ConnectionClosed
 
 from server.engine import Table
+from server.protocol.inbound import CLIENT_TYPES
 from tests.support.games import BREAK_MESSAGE, EIGHT_BALL_BREAK_BALL
 from tests.support.live import greet, http, live_server, recv, send, until, ws_url
 from tests.support.rooms import create_room, join, seated_room
@@ -22,20 +23,7 @@ from tests.support.rooms import create_room, join, seated_room
 pytestmark = pytest.mark.timeout(150)
 TABLE = Table.pool("9ft")
 LAST_PING = 10**6  # a fuzz client's last message: its pong says the server read them all
-TYPES = [
-    "shoot",
-    "place_cue",
-    "aim",
-    "call",
-    "decide",
-    "push_out",
-    "rerack",
-    "chat",
-    "rematch",
-    "concede",
-    "sync",
-    "ping",
-]
+TYPES = sorted(CLIENT_TYPES)
 ODD = [
     None,
     True,

@@ -1,0 +1,320 @@
+"""Computer-opponent benchmark: runouts, the strongest level against a greedy baseline, the
+ladder of levels, plan times and per-game counts.
+
+    python -m bench.ai [--games 200] [--runouts 200] [--only runouts,greedy,ladder]
+                       [--kind eight_ball] [--seed 0] [--jobs 1]
+
+Every shot is played with the executing player's noise (`Bot.execute`); the greedy
+baseline plays with the top level's noise (FastFiz: sigma aim 0.125 deg, speed 0.075 m/s,
+tip 0.5 mm). Breaks alternate. Shares are printed with a 95 % Wilson interval.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import statistics
+import sys
+import time
+from collections.abc import Callable
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from server.ai import LEVELS, Bot, Turn, play_turn
+from server.ai.bot import NormalSource
+from server.ai.geometry import pot_options, speed_for
+from server.ai.search import clamp_shot
+from server.engine import CUE, Shot
+from server.rules import ANYWHERE, Game
+from server.rules.placement import can_place
+
+MAX_TURNS = 200  # a game longer than this is stopped and counted as a draw
+
+
+# --- the greedy baseline --------------------------------------------------------------
+class Greedy:
+    """Ghost ball at the pocket with the smallest cut and clear paths, a fixed-ish speed, no
+    spin, no safeties (no pot: straight at the nearest legal ball). Executes with the top
+    level's noise."""
+
+    name = "greedy"
+
+    def __init__(self) -> None:
+        self._arm = Bot(LEVELS[-1])
+        self.last_sims = 0
+
+    def execute(self, shot: Shot, rng: NormalSource) -> Shot:
+        return self._arm.execute(shot, rng)
+
+    def plan(self, game: Game, seat: int) -> Turn:
+        if game.decision is not None:
+            return Turn(decision=game.decision.options[0])
+        table, balls = game.table, game.balls
+        pos = game.position()
+        targets = game.legal_targets() or pos.object_balls
+        place = None
+        if game.ball_in_hand is not None:
+            place = self._place(game, targets)
+            balls = balls.with_ball(CUE, place)
+        if game.breaking:
+            head = min(targets, key=lambda t: math.dist(balls.position_of(t), table.foot_spot))
+            cx, cy = balls.position_of(CUE)
+            hx, hy = balls.position_of(head)
+            return Turn(place=place, shot=Shot(math.atan2(hy - cy, hx - cx), 10.0), kind="break")
+        options = pot_options(table, balls, targets, math.radians(0.125))
+        if options:
+            best = min(options, key=lambda o: o.cut)
+            speed = min(max(2.0, 1.5 * speed_for(best)), 6.0)
+            call = best.pocket if game.requires_call else None
+            shot = clamp_shot(best.angle, speed, 0.0, 0.0)
+            return Turn(place=place, call=call, shot=shot, kind="pot", target=best.target)
+        cx, cy = balls.position_of(CUE)
+        on = set(balls.on_table_ids())
+        near = min(
+            (t for t in targets if t in on), key=lambda t: math.dist(balls.position_of(t), (cx, cy))
+        )
+        nx, ny = balls.position_of(near)
+        call = 0 if game.requires_call else None
+        shot = Shot(math.atan2(ny - cy, nx - cx), 2.0)
+        return Turn(place=place, call=call, shot=shot, kind="safety", target=near)
+
+    def _place(self, game: Game, targets: list[int]) -> tuple[float, float]:
+        table, balls = game.table, game.balls
+        r = table.ball_radius
+        spots = []
+        on = set(balls.on_table_ids())
+        for t in targets:
+            if t not in on:
+                continue
+            ox, oy = balls.position_of(t)
+            for p in table.pockets:
+                (ax, ay), (bx, by) = p.jaws
+                ux, uy = (ax + bx) / 2 - ox, (ay + by) / 2 - oy
+                n = math.hypot(ux, uy) or 1.0
+                spots.append((ox - ux / n * (2 * r + 0.3), oy - uy / n * (2 * r + 0.3)))
+        spots += [
+            (float(x), float(y))
+            for x in np.linspace(2 * r, table.length - 2 * r, 12)
+            for y in np.linspace(2 * r, table.width - 2 * r, 6)
+        ]
+        for x, y in spots:
+            if can_place(table, balls, game.ball_in_hand, x, y):
+                return (x, y)
+        raise RuntimeError("no place for the cue ball")
+
+
+Player = Bot | Greedy
+
+
+# --- statistics -----------------------------------------------------------------------
+def wilson(successes: int, n: int, z: float = 1.96) -> tuple[float, float]:
+    if n == 0:
+        return (0.0, 1.0)
+    p = successes / n
+    denom = 1 + z * z / n
+    centre = (p + z * z / (2 * n)) / denom
+    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / denom
+    return (max(0.0, centre - half), min(1.0, centre + half))
+
+
+def share(successes: int, n: int) -> str:
+    lo, hi = wilson(successes, n)
+    pct = 100 * successes / n if n else 0.0
+    return f"{successes}/{n} = {pct:.1f} % (95 % CI {100 * lo:.1f}-{100 * hi:.1f} %)"
+
+
+@dataclass
+class Counts:
+    """Per player (by name): shots, pots (legal, a ball of theirs dropped and they kept
+    the table or won), fouls, safeties (shots planned as safeties or kicks), plan times."""
+
+    games: int = 0
+    shots: dict[str, int] = field(default_factory=dict)
+    pots: dict[str, int] = field(default_factory=dict)
+    pot_tries: dict[str, int] = field(default_factory=dict)
+    fouls: dict[str, int] = field(default_factory=dict)
+    safeties: dict[str, int] = field(default_factory=dict)
+    times: dict[str, list[float]] = field(default_factory=dict)
+
+    def add(self, other: Counts) -> None:
+        self.games += other.games
+        for name in ("shots", "pots", "pot_tries", "fouls", "safeties"):
+            mine, theirs = getattr(self, name), getattr(other, name)
+            for k, v in theirs.items():
+                mine[k] = mine.get(k, 0) + v
+        for k, v in other.times.items():
+            self.times.setdefault(k, []).extend(v)
+
+    def bump(self, table: str, who: str, by: int = 1) -> None:
+        d = getattr(self, table)
+        d[who] = d.get(who, 0) + by
+
+
+def make_player(name: str, seed: int) -> Player:
+    return Greedy() if name == "greedy" else Bot(name, seed)
+
+
+def play_game(
+    kind: str, names: tuple[str, str], breaker: int, seed: int
+) -> tuple[int | None, Counts]:
+    """One game; returns the winning seat (None when stopped) and the counts."""
+    game = Game.new(kind, list(names), breaker=breaker, seed=seed)
+    players = [make_player(names[0], seed * 2 + 1), make_player(names[1], seed * 2 + 2)]
+    rng = np.random.default_rng(seed + 12345)
+    counts = Counts(games=1)
+    tags = [f"{names[0]}", f"{names[1]}"] if names[0] != names[1] else ["A", "B"]
+    for _ in range(MAX_TURNS):
+        if game.over:
+            break
+        seat = game.decision.seat if game.decision else game.turn
+        player = players[seat]
+        t0 = time.perf_counter()
+        turn = player.plan(game, seat)
+        elapsed = time.perf_counter() - t0
+        who = names[seat]
+        counts.times.setdefault(who, []).append(elapsed)
+        outcome, _ = play_turn(game, seat, turn, player, rng)
+        if outcome is None:
+            continue
+        counts.bump("shots", who)
+        if turn.kind in ("safety", "kick"):
+            counts.bump("safeties", who)
+        if turn.kind == "pot":
+            counts.bump("pot_tries", who)
+            if (outcome.continues and not outcome.fouls and outcome.pocketed) or (
+                outcome.winner == seat
+            ):
+                counts.bump("pots", who)
+        if outcome.fouls:
+            counts.bump("fouls", who)
+    del tags
+    return (game.winner if game.over else None), counts
+
+
+def _game_job(args: tuple[str, tuple[str, str], int, int]) -> tuple[int | None, Counts]:
+    return play_game(*args)
+
+
+def runout(seed: int) -> tuple[bool, Counts]:
+    """After a break (the top level's, with noise), the top level gets ball in hand on an
+    open 8-ball table: does it clear the table and win without leaving it?"""
+    top = LEVELS[-1]
+    game = Game.new("eight_ball", ["breaker", top], breaker=0, seed=seed)
+    breaker = Bot(top, seed + 777)
+    rng = np.random.default_rng(seed + 999)
+    turn = breaker.plan(game, 0)
+    play_turn(game, 0, turn, breaker, rng)
+    # The position the benchmark asks for: seat 1, ball in hand anywhere, open table.
+    game.decision = game.pending = game.after_decision_bih = None
+    game.over, game.winner, game.reason = False, None, None
+    if 8 not in game.balls.on_table_ids():
+        from server.rules.spotting import respot
+
+        game.balls = respot(game.table, game.balls, (8,))
+    game.breaking, game.groups, game.turn = False, None, 1
+    game.ball_in_hand, game.push_out_available = ANYWHERE, False
+    bot = Bot(top, seed)
+    counts = Counts(games=1)
+    for _ in range(40):
+        t0 = time.perf_counter()
+        plan = bot.plan(game, 1)
+        counts.times.setdefault(top, []).append(time.perf_counter() - t0)
+        outcome, _ = play_turn(game, 1, plan, bot, rng)
+        assert outcome is not None
+        counts.bump("shots", top)
+        if plan.kind in ("safety", "kick"):
+            counts.bump("safeties", top)
+        if plan.kind == "pot":
+            counts.bump("pot_tries", top)
+            if (outcome.continues and not outcome.fouls and outcome.pocketed) or game.winner == 1:
+                counts.bump("pots", top)
+        if outcome.fouls:
+            counts.bump("fouls", top)
+        if game.over:
+            return game.winner == 1, counts
+        if game.turn != 1 or game.decision is not None:
+            return False, counts
+    return False, counts
+
+
+def _map(fn: Callable, jobs_args: list, jobs: int) -> list:
+    if jobs <= 1:
+        return [fn(a) for a in jobs_args]
+    with ProcessPoolExecutor(jobs) as pool:
+        return list(pool.map(fn, jobs_args, chunksize=1))
+
+
+def report_counts(counts: Counts, names: list[str]) -> None:
+    for who in names:
+        shots = counts.shots.get(who, 0)
+        g = max(counts.games, 1)
+        tries = counts.pot_tries.get(who, 0)
+        pots = counts.pots.get(who, 0)
+        times = counts.times.get(who, [])
+        med = statistics.median(times) if times else 0.0
+        mx = max(times) if times else 0.0
+        rate = f"{100 * pots / tries:.0f} %" if tries else "-"
+        print(
+            f"    {who:>9}: {shots / g:.1f} shots, {pots / g:.1f} pots ({rate} of tries), "
+            f"{counts.fouls.get(who, 0) / g:.2f} fouls, {counts.safeties.get(who, 0) / g:.2f} "
+            f"safeties per game; plan median {1e3 * med:.0f} ms, max {1e3 * mx:.0f} ms"
+        )
+
+
+def match(kind: str, strong: str, weak: str, games: int, seed: int, jobs: int) -> None:
+    """`games` games of `strong` against `weak`, breaks and seats alternating."""
+    args = []
+    for i in range(games):
+        names = (strong, weak) if i % 2 == 0 else (weak, strong)
+        args.append((kind, names, (i // 2) % 2, seed + i))
+    t0 = time.perf_counter()
+    results = _map(_game_job, args, jobs)
+    wins = stopped = 0
+    total = Counts()
+    for (_, names, _, _), (winner, counts) in zip(args, results, strict=True):
+        total.add(counts)
+        if winner is None:
+            stopped += 1
+        elif names[winner] == strong:
+            wins += 1
+    print(f"  {kind}: {strong} vs {weak}: {strong} wins {share(wins, games)}", end="")
+    print(f"; {stopped} stopped at {MAX_TURNS} turns; {time.perf_counter() - t0:.0f} s")
+    report_counts(total, [strong, weak])
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--games", type=int, default=200, help="games per comparison")
+    parser.add_argument("--runouts", type=int, default=200, help="racks for the runout test")
+    parser.add_argument("--only", default="runouts,greedy,ladder")
+    parser.add_argument("--kind", default="eight_ball", help="eight_ball or nine_ball (ladder)")
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--jobs", type=int, default=1, help="worker processes")
+    args = parser.parse_args(argv)
+    parts = set(args.only.split(","))
+    print(f"bench.ai: levels {', '.join(LEVELS)}; seed {args.seed}; jobs {args.jobs}")
+    if "runouts" in parts:
+        t0 = time.perf_counter()
+        seeds = [args.seed + i for i in range(args.runouts)]
+        results = _map(runout, seeds, args.jobs)
+        cleared = sum(ok for ok, _ in results)
+        total = Counts()
+        for _, counts in results:
+            total.add(counts)
+        print(f"runouts ({LEVELS[-1]}, ball in hand after a break, open 8-ball table):")
+        print(f"  cleared and won {share(cleared, len(seeds))}; {time.perf_counter() - t0:.0f} s")
+        report_counts(total, [LEVELS[-1]])
+    if "greedy" in parts:
+        print("against the greedy baseline (8-ball, alternating breaks):")
+        match("eight_ball", LEVELS[-1], "greedy", args.games, args.seed, args.jobs)
+    if "ladder" in parts:
+        print(f"the ladder ({args.kind}, each level against the one below):")
+        for weak, strong in zip(LEVELS, LEVELS[1:], strict=False):
+            match(args.kind, strong, weak, args.games, args.seed, args.jobs)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
