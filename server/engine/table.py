@@ -15,6 +15,7 @@ shelf (a hanger) and a ball can rattle between the facings and come back out.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, fields
@@ -111,6 +112,11 @@ class Table:
                 f"unknown table size {size!r}; choose one of {sorted(TABLE_SIZES)}"
             ) from None
         return cls(length, width)
+
+    def fields(self) -> list[float]:
+        """The constructor fields in order: the list form `from_fields` reads (a shot's
+        stored table)."""
+        return [getattr(self, f.name) for f in dataclasses.fields(self) if f.init]
 
     @classmethod
     def from_fields(cls, values: Sequence[float]) -> Table:

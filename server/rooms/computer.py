@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import asyncio
 import logging
-from collections.abc import Awaitable, Callable
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -30,8 +30,8 @@ MAX_STEPS = 4  # turns in a row before handing back (decision, then its shot, ..
 
 @dataclass
 class ComputerSeat:
-    """Plays `seat` of `room` at `level`. `act(kind, turn_or_shot)` is the room's way to
-    apply each step; `relay(angle, power)` shows the cue."""
+    """Plays `seat` of `room` at `level`. The room hands `start` its way to apply a turn
+    (`apply(turn, shot)`) and to show the cue (`relay(angle, power)`)."""
 
     room: Room
     seat: int
@@ -91,7 +91,7 @@ class ComputerSeat:
             log.exception("room %s: the computer could not plan", self.room.room_id)
             return False
         thought = asyncio.get_running_loop().time() - started
-        await _sleep(max(0.0, self.pause / pace - thought))
+        await asyncio.sleep(max(0.0, self.pause / pace - thought))
         if not self.due():
             return False  # the position changed meanwhile (a concession, a timeout)
         shot = None
@@ -100,7 +100,7 @@ class ComputerSeat:
             shot = self.bot.execute(turn.shot, rng)
             for step in range(1, AIM_STEPS + 1):  # the cue swings round and draws back
                 relay(shot.angle, min(1.0, step / AIM_STEPS * shot.speed / 12.0))
-                await _sleep(0.12 / pace)
+                await asyncio.sleep(0.12 / pace)
             if not self.due():
                 return False
         try:
@@ -111,7 +111,3 @@ class ComputerSeat:
             )
             return False
         return True
-
-
-def _sleep(seconds: float) -> Awaitable[None]:
-    return asyncio.sleep(seconds)

@@ -8,12 +8,11 @@ a replay shows what was played even after the physics changes.
 
 from __future__ import annotations
 
-import dataclasses
 import itertools
 from dataclasses import dataclass
 
 from server.codec import encode, to_data
-from server.engine import ENGINE_VERSION, BallSet, Shot, Table
+from server.engine import ENGINE_VERSION, BallSet, Shot
 from server.protocol import ShotPlan
 from server.protocol.plan import motion_text
 from server.rules import Outcome
@@ -95,7 +94,7 @@ class StoreObserver:
             game_no,
             seat,
             to_data(shot),
-            table_fields(match.game.table),
+            match.game.table.fields(),
             before.to_dict(),
             outcome.to_dict(),
         )
@@ -164,8 +163,3 @@ class StoreObserver:
         tracked.finished = True
         args = (tracked.match_id, list(match.score), match.winner, match.reason)
         self.db.write(lambda repo: repo.finish_match(*args), "finish match")
-
-
-def table_fields(table: Table) -> list[float]:
-    """The table's constructor fields in order: the stored form (`Table.from_fields`)."""
-    return [getattr(table, f.name) for f in dataclasses.fields(table) if f.init]

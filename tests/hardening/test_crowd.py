@@ -92,26 +92,41 @@ async def churner(url: str, stop: asyncio.Event) -> None:
             await ws.recv()
 
 
+class Players:
+    """Ana and Ben playing in `base` (once `plays` is set) until `until` has their results."""
+
+    def __init__(self, base: str, tokens: list[str]) -> None:
+        self.stop, self.plays = asyncio.Event(), asyncio.Event()
+        self.results: list[int] = []
+        self.closes: list[object] = []
+        self.tasks = [
+            asyncio.create_task(
+                player(f"{base}?token={t}", i, self.plays, self.stop, self.results, self.closes)
+            )
+            for i, t in enumerate(tokens)
+        ]
+
+    async def until(self, results: int) -> None:
+        """Wait (a minute at most) for `results` results or a closed player, then stop."""
+        for _ in range(600):
+            if len(self.results) >= results or self.closes:
+                break
+            await asyncio.sleep(0.1)
+        self.stop.set()
+        await asyncio.gather(*self.tasks, return_exceptions=True)
+
+
 async def crowd(address: str, room_id: str, tokens: list[str]) -> tuple[list[int], list[object]]:
     base = f"ws://{address}/ws/rooms/{room_id}"
-    stop, plays = asyncio.Event(), asyncio.Event()
-    results: list[int] = []
-    closes: list[object] = []
-    players = [
-        asyncio.create_task(player(f"{base}?token={t}", i, plays, stop, results, closes))
-        for i, t in enumerate(tokens)
-    ]
+    players = Players(base, tokens)
+    stop = players.stop
     fans = [asyncio.create_task(chatter(base, stop, i)) for i in range(CHATTERS)]
     fans += [asyncio.create_task(churner(base, stop)) for _ in range(CHURNERS)]
     await asyncio.sleep(2.0)  # the crowd is in
-    plays.set()
-    for _ in range(600):
-        if len(results) >= 2 * SHOTS or closes:
-            break
-        await asyncio.sleep(0.1)
-    stop.set()
-    await asyncio.gather(*players, *fans, return_exceptions=True)
-    return results, closes
+    players.plays.set()
+    await players.until(2 * SHOTS)
+    await asyncio.gather(*fans, return_exceptions=True)
+    return players.results, players.closes
 
 
 def seated_on(address: str) -> tuple[str, list[str]]:
@@ -152,27 +167,16 @@ async def burst(address: str, room_id: str, tokens: list[str]) -> tuple[list[int
     """70 spectators chat at the same instant, then 200 connect and vanish without a close
     frame, while the players play on."""
     base = f"ws://{address}/ws/rooms/{room_id}"
-    stop, plays = asyncio.Event(), asyncio.Event()
-    results: list[int] = []
-    closes: list[object] = []
-    players = [
-        asyncio.create_task(player(f"{base}?token={t}", i, plays, stop, results, closes))
-        for i, t in enumerate(tokens)
-    ]
+    players = Players(base, tokens)
     fans = [await connect(base) for _ in range(70)]
-    plays.set()
+    players.plays.set()
     await asyncio.gather(*(ws.send(json.dumps({"type": "chat", "text": "now!"})) for ws in fans))
     for _ in range(200):
         ws = await connect(base)
         ws.transport.abort()  # gone, no close handshake
-    for _ in range(600):
-        if len(results) >= 4 or closes:
-            break
-        await asyncio.sleep(0.1)
-    stop.set()
-    await asyncio.gather(*players, return_exceptions=True)
+    await players.until(4)
     await asyncio.gather(*(ws.close() for ws in fans), return_exceptions=True)
-    return results, closes
+    return players.results, players.closes
 
 
 def test_a_chat_burst_and_a_crowd_vanishing_close_no_player(tmp_path: Path):
