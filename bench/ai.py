@@ -1,8 +1,12 @@
 """Computer-opponent benchmark: runouts, the strongest level against a greedy baseline, the
 ladder of levels, plan times and per-game counts.
 
-    python -m bench.ai [--games 200] [--runouts 200] [--only runouts,greedy,ladder]
+    python -m bench.ai [--games 200] [--runouts 200] [--only runouts,greedy,ladder,loop]
                        [--kind eight_ball] [--seed 0] [--jobs 1]
+                       [--rooms 2] [--workers 1] [--seconds 10]
+
+`loop`: how late the server's event loop runs (what every room's frames wait) while
+computer seats plan in threads or in worker processes, as `server.rooms.computer` does.
 
 Every shot is played with the executing player's noise (`Bot.execute`); the greedy
 baseline plays with the top level's noise (FastFiz: sigma aim 0.125 deg, speed 0.075 m/s,
@@ -12,6 +16,7 @@ tip 0.5 mm). Breaks alternate. Shares are printed with a 95 % Wilson interval.
 from __future__ import annotations
 
 import argparse
+import asyncio
 import math
 import statistics
 import sys
@@ -26,11 +31,14 @@ from server.ai import LEVELS, Bot, Turn, play_turn
 from server.ai.bot import NormalSource
 from server.ai.geometry import pot_options, speed_for
 from server.ai.search import clamp_shot
-from server.engine import CUE, Shot
+from server.codec import to_data
+from server.engine import CUE, TICK_HZ, Shot
+from server.rooms.computer import plan_turn
 from server.rules import ANYWHERE, Game
 from server.rules.placement import can_place
 
 MAX_TURNS = 200  # a game longer than this is stopped and counted as a draw
+TICK = 1.0 / TICK_HZ  # s: the stream's frame clock, the loop-lateness probe's period
 
 
 # --- the greedy baseline --------------------------------------------------------------
@@ -136,7 +144,8 @@ class Counts:
     pot_tries: dict[str, int] = field(default_factory=dict)
     fouls: dict[str, int] = field(default_factory=dict)
     safeties: dict[str, int] = field(default_factory=dict)
-    times: dict[str, list[float]] = field(default_factory=dict)
+    times: dict[str, list[float]] = field(default_factory=dict)  # wall clock per plan
+    cpu: dict[str, list[float]] = field(default_factory=dict)  # CPU time per plan (one core)
 
     def add(self, other: Counts) -> None:
         self.games += other.games
@@ -146,6 +155,8 @@ class Counts:
                 mine[k] = mine.get(k, 0) + v
         for k, v in other.times.items():
             self.times.setdefault(k, []).extend(v)
+        for k, v in other.cpu.items():
+            self.cpu.setdefault(k, []).extend(v)
 
     def bump(self, table: str, who: str, by: int = 1) -> None:
         d = getattr(self, table)
@@ -170,11 +181,11 @@ def play_game(
             break
         seat = game.decision.seat if game.decision else game.turn
         player = players[seat]
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         turn = player.plan(game, seat)
-        elapsed = time.perf_counter() - t0
         who = names[seat]
-        counts.times.setdefault(who, []).append(elapsed)
+        counts.times.setdefault(who, []).append(time.perf_counter() - t0)
+        counts.cpu.setdefault(who, []).append(time.process_time() - c0)
         outcome, _ = play_turn(game, seat, turn, player, rng)
         if outcome is None:
             continue
@@ -218,9 +229,10 @@ def runout(seed: int) -> tuple[bool, Counts]:
     bot = Bot(top, seed)
     counts = Counts(games=1)
     for _ in range(40):
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         plan = bot.plan(game, 1)
         counts.times.setdefault(top, []).append(time.perf_counter() - t0)
+        counts.cpu.setdefault(top, []).append(time.process_time() - c0)
         outcome, _ = play_turn(game, 1, plan, bot, rng)
         assert outcome is not None
         counts.bump("shots", top)
@@ -239,6 +251,79 @@ def runout(seed: int) -> tuple[bool, Counts]:
     return False, counts
 
 
+# --- the event loop while the computer thinks --------------------------------------------
+def sample_positions(count: int, seed: int) -> list[tuple[dict, int]]:
+    """Positions of real games (the top level against the greedy baseline, the top level to
+    play), as game data: what a room hands its planner."""
+    out: list[tuple[dict, int]] = []
+    s = seed
+    while len(out) < count:
+        game = Game.new("eight_ball", [LEVELS[-1], "greedy"], breaker=0, seed=s)
+        players: list[Player] = [Bot(LEVELS[-1], s), Greedy()]
+        rng = np.random.default_rng(s)
+        for _ in range(MAX_TURNS):
+            if game.over or len(out) >= count:
+                break
+            seat = game.decision.seat if game.decision else game.turn
+            if seat == 0 and game.decision is None:
+                out.append((to_data(game), seat))
+            play_turn(game, seat, players[seat].plan(game, seat), players[seat], rng)
+        s += 1
+    return out
+
+
+async def loop_lateness(
+    positions: list[tuple[dict, int]], rooms: int, workers: int, seconds: float
+) -> tuple[list[float], int]:
+    """`rooms` computer seats plan one position after another, as rooms do (`workers` planner
+    processes; 0: threads), while a 120 Hz timer on the event loop measures how late it
+    wakes: what every other room's frames wait. Returns (lateness per tick, plans made)."""
+    loop = asyncio.get_running_loop()
+    if rooms:  # start the planner processes and load the engine first
+        await asyncio.gather(*(plan_turn(LEVELS[0], 0, *positions[0], workers) for _ in range(2)))
+    stop = False
+    plans = 0
+
+    async def think(k: int) -> None:
+        nonlocal plans
+        while not stop:
+            data, seat = positions[k % len(positions)]
+            await plan_turn(LEVELS[-1], 0, data, seat, workers)
+            plans += 1
+            k += rooms
+
+    tasks = [asyncio.create_task(think(k)) for k in range(rooms)]
+    lateness: list[float] = []
+    start = loop.time()
+    due = start + TICK
+    while due - start < seconds:
+        await asyncio.sleep(max(0.0, due - loop.time()))
+        lateness.append(loop.time() - due)
+        due += TICK
+    stop = True
+    await asyncio.gather(*tasks)
+    return lateness, plans
+
+
+def loop_report(rooms: int, workers: int, seconds: float, seed: int) -> None:
+    positions = sample_positions(24, seed)
+    print(
+        f"the event loop while {rooms} computer seats plan ({LEVELS[-1]}, back to back, "
+        f"{seconds:g} s each; a 120 Hz timer's lateness):"
+    )
+    for label, n, w in (
+        ("nobody planning", 0, 0),
+        ("threads", rooms, 0),
+        (f"{workers} worker process(es)", rooms, workers),
+    ):
+        late, plans = asyncio.run(loop_lateness(positions, n, w, seconds))
+        ms = sorted(1e3 * x for x in late)
+        print(
+            f"  {label:>24}: {plans} plans; lateness p50 {ms[len(ms) // 2]:.1f} ms, "
+            f"p99 {ms[int(len(ms) * 0.99)]:.1f} ms, max {ms[-1]:.1f} ms"
+        )
+
+
 def _map(fn: Callable, jobs_args: list, jobs: int) -> list:
     if jobs <= 1:
         return [fn(a) for a in jobs_args]
@@ -252,14 +337,15 @@ def report_counts(counts: Counts, names: list[str]) -> None:
         g = max(counts.games, 1)
         tries = counts.pot_tries.get(who, 0)
         pots = counts.pots.get(who, 0)
-        times = counts.times.get(who, [])
-        med = statistics.median(times) if times else 0.0
-        mx = max(times) if times else 0.0
+        times = counts.times.get(who, []) or [0.0]
+        cpu = counts.cpu.get(who, []) or [0.0]
         rate = f"{100 * pots / tries:.0f} %" if tries else "-"
         print(
             f"    {who:>9}: {shots / g:.1f} shots, {pots / g:.1f} pots ({rate} of tries), "
             f"{counts.fouls.get(who, 0) / g:.2f} fouls, {counts.safeties.get(who, 0) / g:.2f} "
-            f"safeties per game; plan median {1e3 * med:.0f} ms, max {1e3 * mx:.0f} ms"
+            f"safeties per game; plan CPU median {1e3 * statistics.median(cpu):.0f} ms, "
+            f"max {1e3 * max(cpu):.0f} ms (wall {1e3 * statistics.median(times):.0f} / "
+            f"{1e3 * max(times):.0f} ms)"
         )
 
 
@@ -292,6 +378,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--kind", default="eight_ball", help="eight_ball or nine_ball (ladder)")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--jobs", type=int, default=1, help="worker processes")
+    parser.add_argument("--rooms", type=int, default=2, help="computer seats (--only loop)")
+    parser.add_argument("--workers", type=int, default=1, help="planner processes (loop)")
+    parser.add_argument("--seconds", type=float, default=10.0, help="per mode (loop)")
     args = parser.parse_args(argv)
     parts = set(args.only.split(","))
     print(f"bench.ai: levels {', '.join(LEVELS)}; seed {args.seed}; jobs {args.jobs}")
@@ -309,6 +398,8 @@ def main(argv: list[str] | None = None) -> int:
     if "greedy" in parts:
         print("against the greedy baseline (8-ball, alternating breaks):")
         match("eight_ball", LEVELS[-1], "greedy", args.games, args.seed, args.jobs)
+    if "loop" in parts:
+        loop_report(args.rooms, args.workers, args.seconds, args.seed)
     if "ladder" in parts:
         print(f"the ladder ({args.kind}, each level against the one below):")
         for weak, strong in zip(LEVELS, LEVELS[1:], strict=False):

@@ -57,6 +57,8 @@ class Players:
                     except TimeoutError:
                         continue
                     now = time.perf_counter()
+                    if isinstance(raw, bytes):  # a shot's `motion`: the whole shot at once
+                        continue
                     message = json.loads(raw)
                     kind = message["type"]
                     if kind == "chat":

@@ -7,30 +7,30 @@ SIGTERM at the end, on a throw-away database), creates N 8-ball rooms, seats two
 each and adds a spectator (all `websockets` clients in this process). The bots play: place
 the cue ball, call the 8, answer decisions and shoot hard at random (4..9 m/s, so balls are
 nearly always moving); `--think` seconds pass between a `state` and the bot's action.
+`--computer K`: K of the rooms seat one bot against the computer opponent (the top level,
+planning in the server's `POOL_COMPUTER_WORKERS` processes) instead of a second bot.
 The clients run on uvloop (`--loop asyncio`: the standard loop) and this process's cyclic
 garbage collector is paused during the measured window: the instrument's own pauses are not
 the server's lateness, and the cheaper the bots, the less of the shared machine they take.
 
 Prints, over the S measured seconds (after every client is connected), the median of the
 runs:
-- frames delivered per second (all clients) and per client (a `frame` message counts
-  with the frames it carries `ahead`);
-- frame lateness p50 / p99 / max: arrival time of the frame of tick k minus
-  (time the shooter sent `shoot` + k/120 s), less the shot's own best arrival (which is the
-  simulation plus loopback time, reported as `start` p50). This is how far the stream slips
-  behind the tick schedule, the thing players feel as stutter;
-- the server's own view (`GET /api/stats`): how late frame messages left the server
-  against the shot's schedule, p50 / p99 ("sent"): the part of the lateness that is the
-  server's, the rest being the network and the clients (this process, on the same cores);
+- `motion` messages received per second (all clients; one a shot and client: the whole
+  shot comes at the strike, docs/protocol.md);
+- shot start p50 / p99 / max: from the shooter's `shoot` to the shot's `motion` arriving,
+  at every client of the room (the players and the spectator);
+- frames in hand: of every tick of every shot at every client, the share whose motion had
+  arrived before the tick was due to be drawn, ticks being due START_BUDGET (0.1 s) +
+  k/120 s after the `shoot` (so 100 % when every motion comes within 0.1 s);
+- the server's own view (`GET /api/stats`): from the room taking `shoot` to its `motion`
+  leaving (simulation, tracing, judging, any wait for a thread or the loop), p50 / p99;
 - server CPU (process user+system time from /proc, all threads, in % of one core) and this
   client process's CPU, so a saturated client is visible; and the machine's steal time (a
   VM host taking the cores away: runs with high steal are slow for reasons outside the code);
-- frames skipped: the share of a shot's frames a spectator did not get (an overloaded
-  server skips frames that are already stale rather than send them late; a slow client's
-  outbox drops them too);
 - bytes per second per client on the wire (WebSocket frames as received from the socket,
-  compressed when permessage-deflate was negotiated): over the whole window, and while balls
-  are moving (a spectator's bytes from a shot's first to its last frame per second of shot);
+  compressed when permessage-deflate was negotiated): over the whole window, and per second
+  of shot (a spectator's bytes from a shot's `motion` to its `shot_result`, over the shots'
+  durations);
 - errors: client exceptions, unexpected closes, `error` messages by code.
 """
 
@@ -48,6 +48,7 @@ import resource
 import signal
 import socket
 import statistics
+import struct
 import subprocess
 import sys
 import tempfile
@@ -63,6 +64,7 @@ from websockets.asyncio.client import ClientConnection
 TICK_HZ = 120
 HEAD_STRING = 0.635
 TABLE = (2.54, 1.27)
+COMPUTER_LEVEL = "pro"  # the level of the computer in `--computer` rooms (the costliest)
 
 
 class CountingConnection(ClientConnection):
@@ -78,15 +80,14 @@ class CountingConnection(ClientConnection):
 @dataclass
 class Stats:
     measuring: bool = False
-    frames: int = 0
-    lateness: list[float] = field(default_factory=list)
-    starts: list[float] = field(default_factory=list)
+    motions: int = 0  # `motion` messages received (one a shot and client)
+    starts: list[float] = field(default_factory=list)  # shoot sent -> motion, every client
+    ticks: int = 0  # the shots' ticks, summed over the clients that got them ...
+    in_hand: int = 0  # ... and those in hand before they were due
     errors: Counter = field(default_factory=Counter)
     shots: int = 0
     rolling_bytes: int = 0
     rolling_seconds: float = 0.0
-    spectator_frames: int = 0  # frames a spectator received of the shots it saw end ...
-    planned_frames: int = 0  # ... and how many the stream had (the rest were skipped)
 
 
 @dataclass
@@ -95,7 +96,7 @@ class RoomBots:
     tokens: list[str]
     shoot_sent: dict[int, float] = field(default_factory=dict)  # shot id -> perf time
     last_shoot: float | None = None  # when a bot last sent `shoot`
-    offsets: dict[int, list[float]] = field(default_factory=dict)
+    computer: bool = False  # the second seat is the computer's (`--computer`)
 
 
 def percentile(values: list[float], p: float) -> float:
@@ -123,6 +124,10 @@ def start_server(
         **os.environ,
         "POOL_DB_PATH": str(db),
         "POOL_MAX_ROOMS": "5000",
+        # every bot comes from this one address: lift the per-client quotas
+        "POOL_MAX_ROOMS_PER_CLIENT": "5000",
+        "POOL_ROOM_CREATE_RATE": "100000/minute",
+        "POOL_JOIN_RATE": "100000/minute",
         "POOL_WS_DEFLATE": "1" if deflate else "0",
         **(extra or {}),
     }
@@ -181,15 +186,17 @@ async def wait_healthy(base: str, proc: subprocess.Popen) -> None:
 # ---- the bots ------------------------------------------------------------------------------
 
 
-async def make_room(http: httpx.AsyncClient) -> RoomBots:
-    room = (
-        await http.post("/api/rooms", json={"game": "eight_ball", "race_to": 15, "shot_clock": 0})
-    ).json()["room_id"]
+async def make_room(http: httpx.AsyncClient, opponent: str | None = None) -> RoomBots:
+    """A room of two bots, or (`opponent`: a computer level) of one bot and the computer."""
+    body = {"game": "eight_ball", "race_to": 15, "shot_clock": 0}
+    if opponent is not None:
+        body["opponent"] = opponent
+    room = (await http.post("/api/rooms", json=body)).json()["room_id"]
     tokens = [
         (await http.post(f"/api/rooms/{room}/join", json={"name": name})).json()["token"]
-        for name in ("Bot A", "Bot B")
+        for name in (("Bot A",) if opponent else ("Bot A", "Bot B"))
     ]
-    return RoomBots(room, tokens)
+    return RoomBots(room, tokens, computer=opponent is not None)
 
 
 def action(state: dict, seat: int, rng: random.Random) -> dict | None:
@@ -245,8 +252,7 @@ async def client(
     if seat is not None:
         url += f"?token={bots.tokens[seat]}"
     pending: asyncio.Task | None = None
-    shot_first: dict[int, list] = {}  # spectator: shot -> [first time, bytes, frames]
-    frame_every = [6]
+    shown: dict[int, tuple[int, float]] = {}  # spectator: shot -> (bytes before, duration)
     try:
         async with websockets.connect(
             url,
@@ -260,35 +266,23 @@ async def client(
             await ready.wait()
             async for raw in ws:  # the task is cancelled when the run is over
                 now = time.perf_counter()
-                frame = parse_frame(raw)
-                if frame is not None:
-                    shot, tick, last, carried = frame
+                if isinstance(raw, bytes):  # a shot's `motion`: the whole shot, at once
+                    shot, duration = parse_motion(raw)
                     if shot not in bots.shoot_sent:
-                        bots.shoot_sent[shot] = bots.last_shoot or now
-                    if stats.measuring:
-                        stats.frames += carried
-                        offset = now - (bots.shoot_sent[shot] + tick / TICK_HZ)
-                        bots.offsets.setdefault(shot, []).append(offset)
+                        # A computer's shot was sent by nobody here: it is not timed.
+                        late = math.nan if bots.computer else now
+                        bots.shoot_sent[shot] = bots.last_shoot or late
+                        if bots.computer:
+                            bots.last_shoot = None
+                    sent = bots.shoot_sent[shot]
+                    if stats.measuring and not math.isnan(sent):
+                        count_motion(stats, now - sent, duration)
                     if seat is None:
-                        if shot not in shot_first:
-                            shot_first[shot] = [now, ws.received - len(raw), 0]
-                        shot_first[shot][2] += carried
-                        if last:
-                            t0, b0, seen = shot_first.pop(shot)
-                            if stats.measuring and now - t0 > 0.5:
-                                stats.rolling_bytes += ws.received - b0
-                                stats.rolling_seconds += now - t0
-                            if stats.measuring:  # frames the server had for this shot
-                                stats.spectator_frames += seen
-                                stats.planned_frames += -(-tick // frame_every[0])
+                        shown[shot] = (ws.received - len(raw), duration)
                     continue
                 message = json.loads(raw)
                 kind = message["type"]
-                if kind == "welcome":
-                    frame_every[0] = message["frame_every"]
-                elif kind == "event" and message["shot"] not in bots.shoot_sent:
-                    bots.shoot_sent[message["shot"]] = bots.last_shoot or now
-                elif kind == "error":
+                if kind == "error":
                     stats.errors[f"error:{message['code']}"] += 1
                     if message["code"] == "illegal_placement" and seat is not None:
                         await ws.send(json.dumps(action_place(rng)))
@@ -300,8 +294,13 @@ async def client(
                         pending = asyncio.ensure_future(
                             act(ws, todo, bots, think * rng.uniform(0.5, 1.5), stats)
                         )
-                elif kind == "shot_result" and message["shot"] is not None:
-                    finish_shot(bots, message["shot"], stats)
+                elif kind == "shot_result" and seat is None and message["shot"] in shown:
+                    before, duration = shown.pop(message["shot"])
+                    bots.shoot_sent.pop(message["shot"], None)
+                    if stats.measuring:
+                        stats.shots += 1
+                        stats.rolling_bytes += ws.received - before
+                        stats.rolling_seconds += duration
         if not stop.is_set():
             stats.errors["closed:by server"] += 1
     except asyncio.CancelledError:
@@ -317,19 +316,27 @@ async def client(
             pending.cancel()
 
 
-FRAME_PREFIX = '{"type":"frame",'
+MOTION_HEADER = struct.Struct("<BBIIIBH")  # docs/protocol.md, `motion`
+START_BUDGET = 0.1  # s from `shoot` by which a shot's playback should start
 
 
-def parse_frame(raw: str | bytes) -> tuple[int, int, bool, int] | None:
-    """(shot, tick, last, frames carried) of a `frame` message, else None. The server writes
-    a frame's keys in a fixed order (`type`, `seq`, `shot`, `tick`, `b`, `ahead`, `last`:
-    docs/protocol.md), so 600 clients on the benchmark's one core need not decode every
-    ball of every frame. Lateness is measured on the message's own tick; the frames it
-    carries `ahead` arrive early by design and count as delivered."""
-    if not isinstance(raw, str) or not raw.startswith(FRAME_PREFIX):
-        return None
-    _, _, shot, tick, _ = raw[:80].split(",", 4)
-    return (int(shot[7:]), int(tick[7:]), raw.endswith(',"last":true}'), 1 + raw.count('{"tick":'))
+def parse_motion(raw: bytes) -> tuple[int, float]:
+    """(shot, duration in s) from a `motion` message's header: 3,000 clients on the
+    benchmark's one core need not decode every track."""
+    _, _, _, shot, duration, _, _ = MOTION_HEADER.unpack_from(raw)
+    return shot, duration / 1e6
+
+
+def count_motion(stats: Stats, start: float, duration: float) -> None:
+    """A client got a shot's motion `start` s after its `shoot`. Its tick k is due to be
+    drawn START_BUDGET + k/120 s after the `shoot` (playback starting within the budget):
+    in hand if the motion came by then."""
+    ticks = max(1, round(duration * TICK_HZ))
+    late = max(0, math.ceil((start - START_BUDGET) * TICK_HZ - 1e-9))
+    stats.motions += 1
+    stats.starts.append(start)
+    stats.ticks += ticks
+    stats.in_hand += max(0, ticks - late)
 
 
 def action_place(rng: random.Random) -> dict:
@@ -347,17 +354,6 @@ async def act(ws, todo: dict, bots: RoomBots, delay: float, stats: Stats) -> Non
     await ws.send(json.dumps(todo))
 
 
-def finish_shot(bots: RoomBots, shot: int, stats: Stats) -> None:
-    """Lateness of a shot's frames: offsets less the shot's best (its start latency)."""
-    offsets = bots.offsets.pop(shot, None)
-    if not offsets or not stats.measuring:
-        return
-    best = min(offsets)
-    stats.starts.append(best)
-    stats.lateness.extend(o - best for o in offsets)
-    stats.shots += 1
-
-
 # ---- one run ---------------------------------------------------------------------------------
 
 
@@ -368,6 +364,7 @@ async def run(
     think: float,
     seed: int,
     server_log: Path | None = None,
+    computer: int = 0,
 ) -> dict:
     port = free_port()
     base = f"http://127.0.0.1:{port}"
@@ -375,7 +372,7 @@ async def run(
         log = Path(tmp) / "server.log"
         proc = start_server(port, Path(tmp) / "bench.db", log, compression is not None)
         try:
-            return await drive(proc, base, rooms, seconds, compression, think, seed)
+            return await drive(proc, base, rooms, seconds, compression, think, seed, computer)
         except Exception:
             print(log.read_text()[-3000:], file=sys.stderr)
             raise
@@ -414,11 +411,14 @@ async def drive(
     compression: str | None,
     think: float,
     seed: int,
+    computer: int = 0,
 ) -> dict:
     await wait_healthy(base, proc)
     rng = random.Random(seed)
     async with httpx.AsyncClient(base_url=base, timeout=60) as http:
-        all_bots = [await make_room(http) for _ in range(rooms)]
+        all_bots = [
+            await make_room(http, COMPUTER_LEVEL if i < computer else None) for i in range(rooms)
+        ]
     stats, stop, ready = Stats(), asyncio.Event(), asyncio.Event()
     connected: list[CountingConnection] = []
     base_ws = base.replace("http", "ws")
@@ -447,7 +447,7 @@ async def drive(
                 await asyncio.sleep(0.01)
 
     for bots in all_bots:
-        for seat in (None, 0, 1):
+        for seat in (None, *range(len(bots.tokens))):  # a spectator and the bot players
             await spawn(bots, seat)
     ready.set()
     await asyncio.sleep(min(8.0, 2.0 + seconds / 4))  # warm up: every room starts shooting
@@ -473,14 +473,12 @@ async def drive(
         "rooms": rooms,
         "clients": clients,
         "seconds": elapsed,
-        "frames_per_s": stats.frames / elapsed,
-        "frames_per_s_client": stats.frames / elapsed / max(1, clients),
-        "late_p50_ms": 1000 * percentile(stats.lateness, 50),
-        "late_p99_ms": 1000 * percentile(stats.lateness, 99),
-        "late_max_ms": 1000 * max(stats.lateness, default=math.nan),
+        "motions_per_s": stats.motions / elapsed,
         "start_p50_ms": 1000 * percentile(stats.starts, 50),
-        "sent_p50_ms": server["late_p50_ms"] if server["frames"] else math.nan,
-        "sent_p99_ms": server["late_p99_ms"] if server["frames"] else math.nan,
+        "start_p99_ms": 1000 * percentile(stats.starts, 99),
+        "start_max_ms": 1000 * max(stats.starts, default=math.nan),
+        "in_hand_pct": 100 * stats.in_hand / stats.ticks if stats.ticks else math.nan,
+        "shot_seconds": stats.rolling_seconds / stats.shots if stats.shots else math.nan,
         "server_start_p50_ms": server["start_p50_ms"] if server["shots"] else math.nan,
         "server_start_p99_ms": server["start_p99_ms"] if server["shots"] else math.nan,
         "shots": stats.shots,
@@ -491,9 +489,6 @@ async def drive(
         "rolling_bytes_per_s": stats.rolling_bytes / stats.rolling_seconds
         if stats.rolling_seconds
         else math.nan,
-        "skipped_pct": 100 * (1 - stats.spectator_frames / stats.planned_frames)
-        if stats.planned_frames
-        else math.nan,
         "errors": dict(stats.errors),
     }
 
@@ -501,18 +496,15 @@ async def drive(
 COLUMNS = [
     ("rooms", "rooms", "{:.0f}"),
     ("clients", "clients", "{:.0f}"),
-    ("frames/s", "frames_per_s", "{:.0f}"),
-    ("per client", "frames_per_s_client", "{:.1f}"),
-    ("late p50 ms", "late_p50_ms", "{:.1f}"),
-    ("late p99 ms", "late_p99_ms", "{:.1f}"),
-    ("late max ms", "late_max_ms", "{:.0f}"),
-    ("skipped %", "skipped_pct", "{:.1f}"),
+    ("motions/s", "motions_per_s", "{:.0f}"),
+    ("in hand %", "in_hand_pct", "{:.2f}"),
     ("start p50 ms", "start_p50_ms", "{:.1f}"),
-    ("sent p50 ms", "sent_p50_ms", "{:.1f}"),
-    ("sent p99 ms", "sent_p99_ms", "{:.1f}"),
+    ("start p99 ms", "start_p99_ms", "{:.1f}"),
+    ("start max ms", "start_max_ms", "{:.0f}"),
     ("server start p50 ms", "server_start_p50_ms", "{:.1f}"),
     ("server start p99 ms", "server_start_p99_ms", "{:.1f}"),
     ("shots", "shots", "{:.0f}"),
+    ("shot s", "shot_seconds", "{:.2f}"),
     ("server CPU %", "server_cpu", "{:.0f}"),
     ("client CPU %", "client_cpu", "{:.0f}"),
     ("steal %", "steal_pct", "{:.0f}"),
@@ -551,9 +543,17 @@ def main(argv: list[str] | None = None) -> None:
         help="the clients' event loop (uvloop, as uvicorn[standard] "
         "installs: cheaper, leaves more of the machine to the server)",
     )
+    parser.add_argument(
+        "--computer",
+        type=int,
+        default=0,
+        help=f"of the rooms, this many have one bot playing the computer ({COMPUTER_LEVEL})",
+    )
     args = parser.parse_args(argv)
     if not 1 <= args.rooms <= 1000 or not 1 <= args.seconds <= 600:
         parser.error("rooms 1..1000, seconds 1..600")
+    if not 0 <= args.computer <= args.rooms:
+        parser.error("computer 0..rooms")
     compression = None if args.compression == "none" else "deflate"
     if args.loop == "uvloop":
         import uvloop
@@ -569,6 +569,7 @@ def main(argv: list[str] | None = None) -> None:
                 args.think,
                 seed=i,
                 server_log=args.server_log,
+                computer=args.computer,
             )
         )
         results.append(result)

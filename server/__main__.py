@@ -1,4 +1,8 @@
-"""`python -m server [--host H] [--port P]`: one uvicorn worker (rooms live in-process)."""
+"""`python -m server [--host H] [--port P]`: one uvicorn worker (rooms live in-process).
+
+Several such processes share the rooms in cluster mode (`POOL_REDIS_URL`, docs/scaling.md):
+on SIGTERM uvicorn runs the app's shutdown, which hands this process's rooms to the others
+before it exits."""
 
 from __future__ import annotations
 

@@ -14,8 +14,11 @@ from fastapi.staticfiles import StaticFiles
 from server.api.headers import SecurityHeaders
 from server.api.http import router as http_router
 from server.api.matches import router as matches_router
+from server.api.players import install as install_players
 from server.api.quotas import ClientQuotas
+from server.api.routing import install as install_calls
 from server.api.ws import router as ws_router
+from server.cluster import Cluster
 from server.config import Settings
 from server.rooms import Clock, RoomRegistry, SeedSource, StoreObserver
 from server.rooms.clock import SYSTEM_CLOCK
@@ -32,16 +35,23 @@ def create_app(
     clock: Clock = SYSTEM_CLOCK,
     seeds: SeedSource | None = None,
 ) -> FastAPI:
-    """Build the app. `settings` defaults to `Settings.from_env()`. `store` is the SQLite
-    history and room store (default: the file at `settings.db_path`); its `StoreObserver`
-    is told about every shot and room change unless `observer` is given. `clock` and
-    `seeds` (the rack seeds of new rooms) are for tests that need a fixed game.
+    """Build the app. `settings` defaults to `Settings.from_env()`. `store` is the
+    history and room store (default: `settings.database`, PostgreSQL or SQLite); its
+    `StoreObserver` is told about every shot and room change unless `observer` is given.
+    `clock` and `seeds` (the rack seeds of new rooms) are for tests that need a fixed game.
     The lifespan restores the saved rooms on start and keeps them on shutdown."""
     settings = settings or Settings.from_env()
-    store = store or Database(settings.db_path)
+    store = store or Database(settings.database)
     if observer is None:
         observer = StoreObserver(store)
+    if seeds is None and settings.rack_seed is not None:
+        seeds = SeedSource.fixed(settings.rack_seed)
     registry = RoomRegistry(settings, observer, clock=clock, seeds=seeds)
+    # Cluster mode: rooms are shared out among the processes; on start this one takes only
+    # rooms whose owner is gone, and on shutdown it hands its own over (docs/scaling.md).
+    cluster = Cluster(settings, registry, store) if settings.redis_url is not None else None
+    if cluster is not None and isinstance(observer, StoreObserver):
+        observer.use_cluster(cluster.match_ids, cluster.epoch_of, cluster.stale)
 
     @contextlib.asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
@@ -49,10 +59,15 @@ def create_app(
         store.open()
         if isinstance(observer, StoreObserver):
             observer.start()
+        if cluster is not None:
+            await cluster.start()
+        elif isinstance(observer, StoreObserver):
             registry.restore(await store.call(lambda repo: repo.rooms()))
+        await matchmaker.resume()
         background = [
             asyncio.create_task(registry.run_sweeper()),
             asyncio.create_task(registry.run_watchdog()),
+            asyncio.create_task(matchmaker.run()),
         ]
         try:
             yield
@@ -65,6 +80,11 @@ def create_app(
                 observer.stop()  # the saved rooms stay saved for the next start
             registry.close_all(CLOSE_RESTART, "server_restart")
             await asyncio.sleep(0)  # let the senders see the close
+            if cluster is not None:
+                await store.call(lambda repo: None)  # every room's last write is stored
+                with contextlib.suppress(Exception):  # Redis gone: leases simply expire
+                    await cluster.drain()
+                await cluster.stop()
             await asyncio.to_thread(store.close)  # every queued write is on disk
             registry.runner.close()
 
@@ -77,22 +97,38 @@ def create_app(
         docs_url=None,  # the interactive docs load scripts from a CDN; the schema stays
         redoc_url=None,
     )
-    app.add_middleware(SecurityHeaders)
+    app.add_middleware(
+        SecurityHeaders, connect=None if cluster is None else lambda: peer_sockets(cluster)
+    )
     app.state.settings = settings
     app.state.registry = registry
     app.state.quotas = ClientQuotas(settings)
     app.state.store = store
+    app.state.cluster = cluster
+    if cluster is not None:
+        install_calls(app, cluster)
     app.include_router(http_router)
     app.include_router(matches_router)
     app.include_router(ws_router)
+    match_ids = observer.match_id if isinstance(observer, StoreObserver) else None
+    matchmaker = install_players(app, registry, store, match_ids, cluster)
     _serve_web(app, settings.web_dir)
     return app
 
 
+def peer_sockets(cluster: Cluster) -> list[str]:
+    """The WebSocket origins of the other live servers (a page may connect to them)."""
+    return [
+        url.replace("https://", "wss://", 1).replace("http://", "ws://", 1)
+        for url in cluster.origins()[1:]
+    ]
+
+
 def _serve_web(app: FastAPI, web_dir: Path) -> None:
     """The client's own files only (the page, its stylesheet and `js/`; not its tests or
-    package files). `/r/{room_id}` (a table) and `/m/{match_id}` (a finished match,
-    replayed) are the same page: the client routes on the path."""
+    package files). `/r/{room_id}` (a table), `/m/{match_id}` (a finished match,
+    replayed), `/profile`, `/p/{player_id}` and `/leaderboard` are the same page: the
+    client routes on the path."""
     index = web_dir / "index.html"
 
     def page() -> FileResponse:
@@ -110,6 +146,18 @@ def _serve_web(app: FastAPI, web_dir: Path) -> None:
 
     @app.get("/m/{match_id}", include_in_schema=False)
     async def match_page(match_id: str) -> FileResponse:
+        return page()
+
+    @app.get("/profile", include_in_schema=False)
+    async def profile_page() -> FileResponse:
+        return page()
+
+    @app.get("/p/{player_id}", include_in_schema=False)
+    async def player_page(player_id: str) -> FileResponse:
+        return page()
+
+    @app.get("/leaderboard", include_in_schema=False)
+    async def leaderboard_page() -> FileResponse:
         return page()
 
     @app.get("/style.css", include_in_schema=False)

@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Annotated, Any
 
 from limits import parse
-from pydantic import AliasChoices, Field, ValidationError, field_validator
+from pydantic import AliasChoices, Field, ValidationError, field_validator, model_validator
 from pydantic.fields import FieldInfo
 from pydantic_settings import (
     BaseSettings,
@@ -75,8 +75,9 @@ class Settings(BaseSettings):
     room_create_rate: str = "30/minute"
     join_rate: str = "60/minute"
 
-    # The engine ticks at a fixed 120 Hz; a frame is sent every `frame_every` ticks (6: 20
-    # frames/s), `frames_per_message` frames to a message (the first now, the rest ahead).
+    # The engine ticks at a fixed 120 Hz; a shot's motion goes out whole at the strike, and
+    # the room keeps every `frame_every`-th tick of it (where a late joiner's table starts).
+    # `frames_per_message` is no longer used; `welcome` still carries it for old readers.
     frame_every: Annotated[int, Field(ge=1, le=120)] = 6
     frames_per_message: Annotated[int, Field(ge=1, le=32)] = 4
     # Processes that simulate shots; 0 (default): threads of this process. On a 2-core
@@ -106,6 +107,9 @@ class Settings(BaseSettings):
     max_spectators: Annotated[int, Field(ge=0, le=100_000)] = 200
     # The computer opponent "thinks" at least this long before it shows a turn (at pace 1).
     computer_pause: Annotated[float, Field(ge=0.0, le=30.0)] = 1.0
+    # Processes the computer opponent plans in (shared by every room; 0: a thread, which
+    # holds the GIL the event loop needs for about half of each plan: docs/ai.md).
+    computer_workers: Annotated[int, Field(ge=0, le=64)] = 1
     ws_ping_interval: PositiveSeconds = 20.0
     ws_ping_timeout: PositiveSeconds = 20.0
     # permessage-deflate: ~5x less bandwidth, but ~45 % more server CPU at 200 rooms, which
@@ -118,7 +122,27 @@ class Settings(BaseSettings):
         validation_alias=AliasChoices("POOL_DB_PATH", "BILLIARDS_DB"),
     )
 
-    @field_validator("room_create_rate", "join_rate")
+    # Cluster mode (docs/scaling.md): processes sharing one Redis for presence, room
+    # ownership, the room list and messages; each needs its own `public_url`. A room's
+    # owner renews its lease every `heartbeat` s; a lease not renewed for `lease_ttl` s
+    # (a dead process) lets another process take the room over from the store.
+    redis_url: Annotated[str, Field(pattern=r"^(rediss?|unix)://\S+$")] | None = None
+    lease_ttl: Annotated[float, Field(ge=1.0, le=120.0)] = 8.0
+    heartbeat: Annotated[float, Field(ge=0.1, le=30.0)] = 2.0
+    rpc_timeout: Annotated[float, Field(gt=0.0, le=60.0)] = 5.0  # a call to another process
+    # Every new room racked with this seed (tests of several processes, demos); unset:
+    # a secret random rack each.
+    rack_seed: Annotated[int, Field(ge=0, lt=2**31)] | None = None
+
+    @model_validator(mode="after")
+    def _cluster(self) -> Settings:
+        if self.redis_url is not None and self.public_url is None:
+            raise ValueError("POOL_REDIS_URL needs POOL_PUBLIC_URL (where clients reach this one)")
+        if self.heartbeat * 2 > self.lease_ttl:
+            raise ValueError("POOL_HEARTBEAT must be at most half of POOL_LEASE_TTL")
+        return self
+
+    @field_validator("room_create_rate", "join_rate", "queue_rate", "player_create_rate")
     @classmethod
     def _rate(cls, value: str) -> str:
         try:
@@ -165,6 +189,29 @@ class Settings(BaseSettings):
     def replace(self, **changes: Any) -> Settings:
         """A copy with `changes`, validated like the rest."""
         return type(self)(**{**self.model_dump(), **changes})
+
+    # Players and Play now (docs/protocol.md, "Players, Play now and the leaderboard"). The
+    # rating window of a queued player: `playnow_window` at once, `playnow_widen` more per
+    # second of waiting, at most `playnow_window_max`; the computer is offered after
+    # `playnow_computer_after` s alone. Per address: new profiles in a moving window; per
+    # player: joining and leaving the queue.
+    playnow_window: Annotated[float, Field(ge=0.0, le=3000.0)] = 100.0
+    playnow_widen: Annotated[float, Field(ge=0.0, le=3000.0)] = 20.0
+    playnow_window_max: Annotated[float, Field(ge=0.0, le=3000.0)] = 700.0
+    playnow_computer_after: Annotated[float, Field(ge=0.0, le=600.0)] = 20.0
+    playnow_race_to: Annotated[int, Field(ge=1, le=15)] = 1
+    playnow_poll: Annotated[float, Field(gt=0.0, le=60.0)] = 25.0  # longest long-poll
+    queue_rate: str = "20/minute"
+    player_create_rate: str = "20/minute"
+
+    # The shared history (docs/scaling.md, "Shared history"): PostgreSQL when set (psycopg
+    # 3), e.g. `postgresql://pool:secret@db.internal:5432/pool`; else the SQLite `db_path`.
+    database_url: str | None = Field(default=None, pattern=r"^postgres(ql)?(\+psycopg)?://\S+$")
+
+    @property
+    def database(self) -> Path | str:
+        """Where the store is: the PostgreSQL URL when set, else the SQLite file."""
+        return self.database_url or self.db_path
 
 
 def env_names(name: str, field: FieldInfo) -> list[str]:

@@ -7,9 +7,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
+from numba import njit
 
 from server.engine import CUE, BallSet, Table
 
@@ -27,8 +27,23 @@ class Pockets:
     mouths: np.ndarray  # (P,)
 
 
-@lru_cache(maxsize=8)
+_pockets: dict[int, tuple[Table, Pockets]] = {}
+
+
 def pockets_of(table: Table) -> Pockets:
+    """The table's pockets as arrays, built once per table (looked up by identity: hashing
+    a `Table` walks all its fields, and the search asks for every simulated outcome)."""
+    cached = _pockets.get(id(table))
+    if cached is not None and cached[0] is table:
+        return cached[1]
+    pockets = _build_pockets(table)
+    if len(_pockets) > 16:
+        _pockets.clear()
+    _pockets[id(table)] = (table, pockets)
+    return pockets
+
+
+def _build_pockets(table: Table) -> Pockets:
     aims, outward, mouths = [], [], []
     for p in table.pockets:
         (ax, ay), (bx, by) = p.jaws
@@ -56,25 +71,119 @@ class PotOption:
     cut: float
 
 
-def _segment_distances(a: np.ndarray, b: np.ndarray, pts: np.ndarray) -> np.ndarray:
-    """Distance from each of `pts` (M, 2) to each segment a->b, a and b (K, 2): (K, M)."""
-    ab = b - a
-    length2 = np.maximum(np.sum(ab * ab, axis=-1), 1e-12)
-    ap = pts[None, :, :] - a[:, None, :]
-    t = np.clip(np.sum(ap * ab[:, None, :], axis=-1) / length2[:, None], 0.0, 1.0)
-    closest = a[:, None, :] + t[..., None] * ab[:, None, :]
-    return np.sqrt(np.sum((pts[None, :, :] - closest) ** 2, axis=-1))
+@njit(cache=True, inline="always")
+def _near_segment(ax: float, ay: float, bx: float, by: float, px: float, py: float) -> float:
+    """Distance from the point p to the segment a->b."""
+    abx, aby = bx - ax, by - ay
+    length2 = max(abx * abx + aby * aby, 1e-12)
+    t = min(max(((px - ax) * abx + (py - ay) * aby) / length2, 0.0), 1.0)
+    dx, dy = px - (ax + t * abx), py - (ay + t * aby)
+    return math.sqrt(dx * dx + dy * dy)
 
 
-def erf(x: np.ndarray) -> np.ndarray:
-    """The error function, elementwise (Abramowitz and Stegun 7.1.26, error < 2e-7)."""
-    sign = np.sign(x)
-    a = np.abs(x)
-    t = 1.0 / (1.0 + 0.3275911 * a)
-    poly = t * (
-        0.254829592 + t * (-0.284496736 + t * (1.421413741 + t * (-1.453152027 + t * 1.061405429)))
-    )
-    return sign * (1.0 - poly * np.exp(-a * a))
+@njit(cache=True)
+def _pot_kernel(
+    positions: np.ndarray,
+    on: np.ndarray,
+    rows: np.ndarray,
+    cue_row: int,
+    cue_x: float,
+    cue_y: float,
+    aims: np.ndarray,
+    outward: np.ndarray,
+    mouths: np.ndarray,
+    r: float,
+    length: float,
+    width: float,
+    aim_sigma: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(feasible, chance, cue angle, d1, d2, cos cut), each (T, P), for the balls `rows`:
+    ghost-ball aim at each pocket's mouth, rejected when too thin a cut, too steep an
+    approach, a ghost ball off the bed or any ball within a ball's width of either path;
+    the chance is that of the object ball's angle error against the mouth's clean window.
+    Compiled: the search calls it for every simulated outcome (the table it leaves)."""
+    n_t, n_p, n = len(rows), len(aims), len(positions)
+    ok = np.zeros((n_t, n_p), dtype=np.bool_)
+    chance = np.zeros((n_t, n_p))
+    angle = np.zeros((n_t, n_p))
+    d1 = np.zeros((n_t, n_p))
+    d2 = np.zeros((n_t, n_p))
+    cos_cut = np.zeros((n_t, n_p))
+    min_cos = math.cos(MAX_CUT)
+    sigma = max(aim_sigma, 1e-6)
+    for i in range(n_t):
+        row = rows[i]
+        ox, oy = positions[row, 0], positions[row, 1]
+        for p in range(n_p):
+            tx, ty = aims[p, 0] - ox, aims[p, 1] - oy
+            dist2 = max(math.sqrt(tx * tx + ty * ty), 1e-9)
+            ux, uy = tx / dist2, ty / dist2
+            gx, gy = ox - 2 * r * ux, oy - 2 * r * uy
+            vx, vy = gx - cue_x, gy - cue_y
+            dist1 = max(math.sqrt(vx * vx + vy * vy), 1e-9)
+            cc = (ux * vx + uy * vy) / dist1
+            cos_in = ux * outward[p, 0] + uy * outward[p, 1]
+            window = (mouths[p] * min(max(cos_in, 0.0), 1.0) - 2 * r) / 2 + JAW_BONUS
+            d1[i, p], d2[i, p], cos_cut[i, p] = dist1, dist2, cc
+            angle[i, p] = math.atan2(vy, vx)
+            if cc <= min_cos or window <= 0.003 or cos_in <= 0.35:
+                continue
+            if gx < r or gx > length - r or gy < r or gy > width - r:
+                continue
+            blocked = False
+            for k in range(n):
+                if not on[k] or k == cue_row or k == row:  # noqa: SIM109 (numba)
+                    continue
+                px, py = positions[k, 0], positions[k, 1]
+                if (
+                    _near_segment(cue_x, cue_y, gx, gy, px, py) < 2 * r
+                    or _near_segment(ox, oy, aims[p, 0], aims[p, 1], px, py) < 2 * r
+                ):
+                    blocked = True
+                    break
+            if blocked:
+                continue
+            ok[i, p] = True
+            sigma_obj = dist1 * sigma / (2 * r * max(cc, 0.05))
+            chance[i, p] = math.erf((window / dist2) / (sigma_obj * math.sqrt(2.0)))
+    return ok, chance, angle, d1, d2, cos_cut
+
+
+@njit(cache=True)
+def _open_kernel(
+    positions: np.ndarray,
+    on: np.ndarray,
+    rows: np.ndarray,
+    cue_row: int,
+    aims: np.ndarray,
+    outward: np.ndarray,
+    r: float,
+) -> float:
+    """The share of the balls `rows` with a clear path to some pocket."""
+    n = len(positions)
+    clear = 0
+    for i in range(len(rows)):
+        row = rows[i]
+        ox, oy = positions[row, 0], positions[row, 1]
+        for p in range(len(aims)):
+            tx, ty = aims[p, 0] - ox, aims[p, 1] - oy
+            dist = max(math.sqrt(tx * tx + ty * ty), 1e-9)
+            if (tx * outward[p, 0] + ty * outward[p, 1]) / dist <= 0.45:
+                continue
+            blocked = False
+            for k in range(n):
+                if not on[k] or k == cue_row or k == row:  # noqa: SIM109 (numba)
+                    continue
+                if (
+                    _near_segment(ox, oy, aims[p, 0], aims[p, 1], positions[k, 0], positions[k, 1])
+                    < 2 * r
+                ):
+                    blocked = True
+                    break
+            if not blocked:
+                clear += 1
+                break
+    return clear / len(rows)
 
 
 def pot_options(
@@ -109,6 +218,15 @@ def pot_options(
     return out
 
 
+def _rows_of(balls: BallSet, targets: list[int]) -> tuple[list[int], np.ndarray, int]:
+    """(targets on the table, their rows, the cue ball's row)."""
+    ids = balls.ids.tolist()
+    on = balls.on_table
+    row_of = {b: i for i, b in enumerate(ids)}
+    want = [t for t in targets if t != CUE and t in row_of and on[row_of[t]]]
+    return want, np.array([row_of[t] for t in want], dtype=np.int64), row_of[CUE]
+
+
 def _pot_arrays(
     table: Table,
     balls: BallSet,
@@ -119,60 +237,32 @@ def _pot_arrays(
     tuple[list[int], np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None
 ):
     """(targets present, feasible, chance, cue angle, d1, d2, cos cut), each (T, P)."""
-    on = balls.on_table
-    ids = balls.ids
-    want = [t for t in targets if t != CUE]
+    want, rows, cue_row = _rows_of(balls, targets)
     if not want:
         return None
-    present = set(ids[on].tolist())
-    want = [t for t in want if t in present]
-    rows = [int(np.flatnonzero(ids == t)[0]) for t in want]
-    if not rows:
-        return None
-    cue_row = int(np.flatnonzero(ids == CUE)[0])
+    on = balls.on_table
     if cue_xy is None:
         if not on[cue_row]:
             return None
-        cue = balls.positions[cue_row]
+        cue_x, cue_y = float(balls.positions[cue_row, 0]), float(balls.positions[cue_row, 1])
     else:
-        cue = np.array(cue_xy, dtype=np.float64)
-    r = table.ball_radius
+        cue_x, cue_y = float(cue_xy[0]), float(cue_xy[1])
     pk = pockets_of(table)
-    obj = balls.positions[rows]  # (T, 2)
-    n_t, n_p = len(rows), len(pk.aims)
-    to_pocket = pk.aims[None, :, :] - obj[:, None, :]  # (T, P, 2)
-    d2 = np.maximum(np.linalg.norm(to_pocket, axis=-1), 1e-9)
-    u = to_pocket / d2[..., None]
-    ghost = obj[:, None, :] - 2 * r * u
-    to_ghost = ghost - cue
-    d1 = np.maximum(np.linalg.norm(to_ghost, axis=-1), 1e-9)
-    v = to_ghost / d1[..., None]
-    cos_cut = np.sum(u * v, axis=-1)
-    cos_in = np.sum(u * pk.outward[None, :, :], axis=-1)
-    window = (pk.mouths[None, :] * np.clip(cos_in, 0.0, 1.0) - 2 * r) / 2 + JAW_BONUS
-    ok = (cos_cut > math.cos(MAX_CUT)) & (window > 0.003) & (cos_in > 0.35)
-    gx, gy = ghost[..., 0], ghost[..., 1]
-    ok &= (gx >= r) & (gx <= table.length - r) & (gy >= r) & (gy <= table.width - r)
-    # Blockers: any other ball on the table within a ball's width of either path.
-    others_mask = on.copy()
-    others_mask[cue_row] = False
-    flat_ghost = ghost.reshape(-1, 2)
-    flat_obj = np.repeat(obj, n_p, axis=0)
-    flat_aims = np.tile(pk.aims, (n_t, 1))
-    own_rows = np.repeat(np.array(rows), n_p)
-    if others_mask.any():
-        other_rows = np.flatnonzero(others_mask)
-        pts = balls.positions[other_rows]
-        not_self = other_rows[None, :] != own_rows[:, None]
-        cue_path = _segment_distances(np.broadcast_to(cue, flat_ghost.shape), flat_ghost, pts)
-        obj_path = _segment_distances(flat_obj, flat_aims, pts)
-        blocked = ((cue_path < 2 * r) | (obj_path < 2 * r)) & not_self
-        ok &= ~blocked.any(axis=1).reshape(n_t, n_p)
-    sigma_obj = d1 * max(aim_sigma, 1e-6) / (2 * r * np.maximum(cos_cut, 0.05))
-    eps = window / d2
-    chance = erf(eps / (sigma_obj * math.sqrt(2.0)))
-    chance = np.where(ok, chance, 0.0)
-    angles = np.arctan2(to_ghost[..., 1], to_ghost[..., 0])
+    ok, chance, angles, d1, d2, cos_cut = _pot_kernel(
+        balls.positions,
+        on,
+        rows,
+        cue_row,
+        cue_x,
+        cue_y,
+        pk.aims,
+        pk.outward,
+        pk.mouths,
+        float(table.ball_radius),
+        float(table.length),
+        float(table.width),
+        float(aim_sigma),
+    )
     return want, ok, chance, angles, d1, d2, cos_cut
 
 
@@ -205,28 +295,12 @@ def speed_for(option: PotOption, u_roll_g: float = 0.0981) -> float:
 def open_share(table: Table, balls: BallSet, targets: list[int]) -> float:
     """The share of `targets` on the table that have a clear path to some pocket from where
     they lie (a ball in a cluster or behind others has none): how open the table is."""
-    on = balls.on_table
-    ids = balls.ids
-    present = set(ids[on].tolist())
-    rows = [int(np.flatnonzero(ids == t)[0]) for t in targets if t != CUE and t in present]
-    if not rows:
+    want, rows, cue_row = _rows_of(balls, targets)
+    if not want:
         return 1.0
-    r = table.ball_radius
     pk = pockets_of(table)
-    obj = balls.positions[rows]
-    n_t, n_p = len(rows), len(pk.aims)
-    to_pocket = pk.aims[None, :, :] - obj[:, None, :]
-    d2 = np.maximum(np.linalg.norm(to_pocket, axis=-1), 1e-9)
-    cos_in = np.sum((to_pocket / d2[..., None]) * pk.outward[None, :, :], axis=-1)
-    ok = cos_in > 0.45
-    cue_row = int(np.flatnonzero(ids == CUE)[0])
-    mask = on.copy()
-    mask[cue_row] = False
-    other_rows = np.flatnonzero(mask)
-    if len(other_rows):
-        pts = balls.positions[other_rows]
-        own = np.repeat(np.array(rows), n_p)
-        dist = _segment_distances(np.repeat(obj, n_p, axis=0), np.tile(pk.aims, (n_t, 1)), pts)
-        blocked = (dist < 2 * r) & (other_rows[None, :] != own[:, None])
-        ok &= ~blocked.any(axis=1).reshape(n_t, n_p)
-    return float(np.mean(ok.any(axis=1)))
+    return float(
+        _open_kernel(
+            balls.positions, balls.on_table, rows, cue_row, pk.aims, pk.outward, table.ball_radius
+        )
+    )

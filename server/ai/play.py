@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
-from typing import Protocol
+from typing import Any, Protocol
 
+from server.codec import from_data
 from server.engine import Shot, ShotResult, simulate
 from server.rules import Game, Outcome
 
-from .bot import NormalSource, Turn
+from .bot import Bot, NormalSource, Turn
+from .levels import LEVELS
 
 
 class Executor(Protocol):
@@ -42,3 +44,17 @@ def play_turn(
     game.check_shot(seat)
     result = simulate(game.table, game.balls, shot)
     return game.apply(seat, result), result
+
+
+def plan_data(level: str, seed: int, game: dict[str, Any], seat: int) -> Turn:
+    """`Bot(level, seed).plan` of a game given as its data (`server.codec.to_data`): what a
+    worker process runs for a room (the data pickles small; the plan is the same as on the
+    room's own `Game`, since a plan depends only on the position, the level and the seed)."""
+    return Bot(level, seed).plan(from_data(Game, game), seat)
+
+
+def warm_up() -> None:
+    """Load the compiled engine (numba's cache) and plan once, so a worker's first real plan
+    is as fast as any."""
+    game = Game.new("eight_ball", ["a", "b"], seed=0)
+    Bot(LEVELS[0]).plan(game, game.turn)

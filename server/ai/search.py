@@ -32,6 +32,7 @@ GIVE_BASE, GIVE_SCALE = -0.1, 0.6  # value of giving it up: base - scale * oppon
 OPEN_WEIGHT = 0.45  # share of the position score given to how open the own balls are
 PROGRESS = 0.03  # per own ball pocketed
 SAFETY_BELOW = 0.3
+SAFETY_SHARE = 0.3  # of a turn's simulations kept for safeties and kicks
 LOOK_PAIRS, LOOK_SPEEDS, LOOK_TIPS = 4, 2, 3  # the next-shot search of the lookahead
 LOOK_SIMS = (
     LOOK_PAIRS * LOOK_SPEEDS * LOOK_TIPS + 1
@@ -53,6 +54,13 @@ def clamp_shot(angle: float, speed: float, side: float, height: float) -> Shot:
         k = MAX_TIP / norm * (1 - 1e-9)
         side, height = side * k, height * k
     return Shot(math.remainder(angle, 2 * math.pi), speed, (side, height))
+
+
+def aimed(angle: float, speed: float, side: float, height: float) -> Shot:
+    """A stroke whose cue ball leaves along `angle`: the aim turned against the squirt of
+    its side spin (the ghost-ball line is where the cue ball must go, not the cue)."""
+    shot = clamp_shot(angle, speed, side, height)
+    return clamp_shot(angle - shot.squirt(), shot.speed, *shot.tip)
 
 
 def perturb(shot: Shot, noise: np.ndarray, level: Level) -> Shot:
@@ -198,26 +206,34 @@ class Search:
         cand.value, cand.pot_rate = total / n, made / n
 
     def refine(self, balls: BallSet, cands: list[Candidate], keep: int) -> list[Candidate]:
-        """Score every candidate without noise, then the best `keep` under noise; within
-        the simulations left before `limit` (candidates come best first)."""
+        """Score every candidate without noise, then the best `keep` under noise; never past
+        `limit` simulations (candidates come best first; when no noisy sample fits, the best
+        zero-noise candidate stands, valued as it scored)."""
         room = self.limit - self.sims
-        cands = cands[: max(keep, room // 2)]
+        if room <= 0 or not cands:
+            return []
+        cands = cands[: min(room, max(keep, room // 2))]
         for cand in cands:
             self.score0(balls, cand)
         cands.sort(key=lambda c: -(c.value0 + 0.5 * c.prior))
         room = self.limit - self.sims
-        keep = max(1, min(keep, room // max(len(self.noise), 1)))
+        keep = min(keep, room // max(len(self.noise), 1))
+        if keep <= 0:
+            best = cands[0]
+            best.value = best.value0
+            return [best]
         chosen = cands[:keep]
         for cand in chosen:
             self.score_noisy(balls, cand)
         chosen.sort(key=lambda c: -c.value)
         room = self.limit - self.sims
-        if self.level.confirm and len(chosen) > 1 and room >= len(self.confirm_noise) * 2:
+        n_confirm = min(self.level.confirm, len(chosen))
+        if n_confirm > 1 and room >= len(self.confirm_noise) * n_confirm:
             # The best few again on fresh draws: the first scores favour lucky candidates.
             first = self.noise
             self.noise = self.confirm_noise
             try:
-                for cand in chosen[: self.level.confirm]:
+                for cand in chosen[:n_confirm]:
                     before, rate = cand.value, cand.pot_rate
                     self.score_noisy(balls, cand)
                     n0, n1 = len(first), len(self.confirm_noise)
@@ -225,8 +241,8 @@ class Search:
                     cand.pot_rate = (rate * n0 + cand.pot_rate * n1) / (n0 + n1)
             finally:
                 self.noise = first
-            head = sorted(chosen[: self.level.confirm], key=lambda c: -c.value)
-            chosen = head + chosen[self.level.confirm :]
+            head = sorted(chosen[:n_confirm], key=lambda c: -c.value)
+            chosen = head + chosen[n_confirm:]
         if self.level.lookahead and chosen and chosen[0].kind == "pot":
             for cand in chosen[: self.level.lookahead]:
                 self.look_ahead(balls, cand)
@@ -253,7 +269,7 @@ class Search:
             for factor in SPEED_FACTORS[:LOOK_SPEEDS]:
                 for side, height in TIPS[:LOOK_TIPS]:
                     speed = min(base * factor, 0.85 * MAX_SPEED)
-                    shot = clamp_shot(option.angle, speed, side, height)
+                    shot = aimed(option.angle, speed, side, height)
                     after = replace(nxt, called_pocket=option.pocket) if needs_call else nxt
                     saved, self.seat = self.seat, nxt.turn
                     try:
@@ -280,9 +296,7 @@ class Search:
             for side, height in TIPS[: self.level.tips]:
                 out.append(
                     Candidate(
-                        clamp_shot(
-                            option.angle, min(base * factor, 0.85 * MAX_SPEED), side, height
-                        ),
+                        aimed(option.angle, min(base * factor, 0.85 * MAX_SPEED), side, height),
                         option.pocket if needs_call else None,
                         "pot",
                         option.target,
@@ -369,10 +383,17 @@ class Search:
 
     # --- the turn ---------------------------------------------------------------------
     def best_shot(self, balls: BallSet, pairs: int | None = None) -> Candidate:
-        """The best stroke from `balls` (cue ball where it is)."""
+        """The best stroke from `balls` (cue ball where it is), within `limit` simulations:
+        the pots may spend all but `SAFETY_SHARE` of them, the safeties the rest."""
         level = self.level
         pairs = level.pairs if pairs is None else pairs
-        chosen = self.refine(balls, self.pot_candidates(balls, pairs), level.refine)
+        end = self.limit
+        if level.safeties:
+            self.limit = self.sims + int((end - self.sims) * (1 - SAFETY_SHARE))
+        try:
+            chosen = self.refine(balls, self.pot_candidates(balls, pairs), level.refine)
+        finally:
+            self.limit = end
         best = chosen[0] if chosen else None
         keep = max(2, level.refine // 2) if level.safeties else 1
         if best is None or (level.safeties and best.value < SAFETY_BELOW):
@@ -383,5 +404,15 @@ class Search:
                 safe = sorted(safe + self.refine(balls, more(balls), keep), key=lambda c: -c.value)
             if safe and (best is None or safe[0].value > best.value):
                 best = safe[0]
-        assert best is not None  # the sweep always gives candidates
-        return best
+        return best if best is not None else self.fallback(balls)
+
+    def fallback(self, balls: BallSet) -> Candidate:
+        """A firm hit straight at the nearest legal ball, unsimulated: what is left when the
+        budget allowed no simulation at all."""
+        cx, cy = balls.position_of(CUE)
+        on = set(balls.on_table_ids())
+        targets = [t for t in self.targets(self.pos) if t in on] or [b for b in on if b != CUE]
+        near = min(targets, key=lambda t: math.dist(balls.position_of(t), (cx, cy)))
+        nx, ny = balls.position_of(near)
+        shot = clamp_shot(math.atan2(ny - cy, nx - cx), 2.0, 0.0, 0.0)
+        return Candidate(shot, self.default_call(balls), "safety", near)

@@ -9,6 +9,7 @@ from typing import Annotated
 from fastapi import Depends, HTTPException, Request
 from starlette.requests import HTTPConnection
 
+from server.cluster import Cluster
 from server.config import Settings
 from server.rooms import LiveRoom, RoomRegistry
 from server.store import Database
@@ -29,6 +30,12 @@ def get_registry(conn: HTTPConnection) -> RoomRegistry:
 def get_store(conn: HTTPConnection) -> Database:
     store: Database = conn.app.state.store
     return store
+
+
+def get_cluster(conn: HTTPConnection) -> Cluster | None:
+    """This process's part in the cluster; None in one-process mode (no `POOL_REDIS_URL`)."""
+    cluster: Cluster | None = getattr(conn.app.state, "cluster", None)
+    return cluster
 
 
 def get_quotas(conn: HTTPConnection) -> ClientQuotas:
@@ -55,4 +62,5 @@ Registry = Annotated[RoomRegistry, Depends(get_registry)]
 Store = Annotated[Database, Depends(get_store)]
 RoomDep = Annotated[LiveRoom, Depends(get_room)]
 Quotas = Annotated[ClientQuotas, Depends(get_quotas)]
+ClusterDep = Annotated[Cluster | None, Depends(get_cluster)]
 ClientId = Annotated[str, Depends(client_id)]

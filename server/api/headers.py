@@ -3,6 +3,8 @@ cannot be framed, and sends no referrer off-site."""
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable
+
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 CONTENT_SECURITY_POLICY = (
@@ -19,20 +21,34 @@ HEADERS: list[tuple[bytes, bytes]] = [
 ]
 
 
-class SecurityHeaders:
-    """Pure ASGI middleware (no per-request task, unlike `BaseHTTPMiddleware`)."""
+def headers_with(connect: Iterable[str]) -> list[tuple[bytes, bytes]]:
+    """`HEADERS`, the page also allowed to open sockets to `connect` (the other servers of
+    a cluster: a room's `ws_url` may be on any of them)."""
+    extra = " ".join(sorted(set(connect)))
+    if not extra:
+        return HEADERS
+    policy = CONTENT_SECURITY_POLICY.replace("connect-src 'self'", f"connect-src 'self' {extra}")
+    return [(b"content-security-policy", policy.encode()), *HEADERS[1:]]
 
-    def __init__(self, app: ASGIApp) -> None:
+
+class SecurityHeaders:
+    """Pure ASGI middleware (no per-request task, unlike `BaseHTTPMiddleware`).
+    `connect`: more WebSocket origins the page may connect to, asked at each response."""
+
+    def __init__(self, app: ASGIApp, connect: Callable[[], Iterable[str]] | None = None) -> None:
         self.app = app
+        self.connect = connect
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         if scope["type"] != "http":
             await self.app(scope, receive, send)
             return
 
+        headers = HEADERS if self.connect is None else headers_with(self.connect())
+
         async def send_with_headers(message: Message) -> None:
             if message["type"] == "http.response.start":
-                message["headers"] = [*message.get("headers", ()), *HEADERS]
+                message["headers"] = [*message.get("headers", ()), *headers]
             await send(message)
 
         await self.app(scope, receive, send_with_headers)

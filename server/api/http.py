@@ -4,13 +4,21 @@ from __future__ import annotations
 
 from typing import Annotated, Any
 
-from fastapi import APIRouter, HTTPException, Query, status
+from fastapi import APIRouter, HTTPException, Query, Request, status
+from pydantic import BaseModel, Field
 
 from server.ai import LEVELS
+from server.cluster import Unreachable
 from server.protocol import LIMITS, Limits
 from server.rooms import ActionError
+from server.rooms.computer import HINT_LEVEL
+from server.rooms.computer import hint as plan_hint
 
-from .deps import ClientId, Quotas, Registry, RoomDep, SettingsDep
+from . import routing
+from .deps import ClientId, ClusterDep, Quotas, Registry, SettingsDep
+from .identity import player_seat_key
+from .players import remember_seat
+from .ranked_friends import NEEDS_AGREEMENT, asking_player, check_create, seat_agreed, tables_of
 from .schemas import (
     ComputerLevels,
     CreateRoom,
@@ -72,10 +80,18 @@ async def server_stats(
     tags=["rooms"],
 )
 async def create_room(
-    body: CreateRoom, registry: Registry, settings: SettingsDep, quotas: Quotas, client: ClientId
+    body: CreateRoom,
+    request: Request,
+    registry: Registry,
+    settings: SettingsDep,
+    quotas: Quotas,
+    client: ClientId,
+    cluster: ClusterDep,
 ) -> dict[str, Any]:
     """Open a table. `practice` has one seat and no clock; join it next to sit down.
     `listed: false` opens a private table: not in the lobby, joined through its link.
+    In cluster mode the table opens on the least loaded server (`ws_url` says which).
+    `ranked: true` (with a profile): rated when both players agree on their joins.
     429: this client opened too many tables (at once, or within the rate window)."""
     if not quotas.allow("create", client):
         raise HTTPException(
@@ -91,72 +107,169 @@ async def create_room(
                 f"{settings.min_shot_clock:g} seconds.",
             },
         )
-    try:
-        if body.opponent is not None and body.game == "practice":
-            raise HTTPException(
-                422, {"code": "bad_opponent", "message": "Practice is played alone."}
-            )
-        live = registry.create(
-            body.game, body.race_to, clock, body.listed, owner=client, opponent=body.opponent
-        )
-    except ActionError as exc:
-        code = 429 if exc.code == "too_many_rooms_open" else 503
-        raise HTTPException(code, {"code": exc.code, "message": exc.message}) from None
-    room = live.room
-    return {
-        "room_id": room.room_id,
-        "game": room.game,
-        "race_to": room.race_to,
-        "shot_clock": room.shot_clock,
-        "seats": len(room.seats),
-        "listed": room.listed,
-        "opponent": next(iter(room.computer.values()), None),
-        "url": f"/r/{room.room_id}",
-    }
+    if body.ranked:
+        check_create(body.game, body.opponent, cluster, await asking_player(request))
+    if cluster is not None:
+        node = await cluster.place()
+        if node != cluster.node:
+            args = {"body": body.model_dump(mode="json"), "client": client}
+            return await routing.forward(cluster, node, "create", args)
+    base = routing.base_url(settings, cluster, str(request.base_url))
+    created = await routing.open_room(registry, settings, cluster, body, client, base)
+    if body.ranked:
+        tables_of(request).add(created["room_id"], body.game, set(registry.rooms))
+    return {**created, "ranked": body.ranked}
 
 
 @router.get("/api/rooms", response_model=RoomList, tags=["rooms"])
 async def list_rooms(
+    request: Request,
     registry: Registry,
+    cluster: ClusterDep,
     limit: Annotated[int, Query(ge=1, le=MAX_PAGE)] = 50,
     offset: Annotated[int, Query(ge=0, le=1_000_000)] = 0,
 ) -> dict[str, Any]:
-    """Listed tables, newest first, a page at a time (`next`: the offset of the next page,
-    null on the last); private tables are never listed."""
-    listed = registry.listing()
-    page = listed[offset : offset + limit]
-    following = offset + limit if offset + limit < len(listed) else None
-    return {
-        "rooms": [live.room.summary() for live in page],
-        "total": len(listed),
-        "next": following,
-    }
+    """Listed tables (of every server, in cluster mode), newest first, a page at a time
+    (`next`: the offset of the next page, null on the last); private tables are never
+    listed."""
+    try:
+        rooms, total = (
+            await cluster.directory.listing(offset, limit) if cluster is not None else ([], -1)
+        )
+    except Unreachable:  # Redis out of reach: this server's own tables, until it is back
+        rooms, total = [], -1
+    if total < 0:
+        listed = registry.listing()
+        rooms, total = (
+            [
+                {**live.room.summary(), "ranked": tables_of(request).is_ranked(live.room.room_id)}
+                for live in listed[offset : offset + limit]
+            ],
+            len(listed),
+        )
+    following = offset + limit if offset + limit < total else None
+    return {"rooms": rooms, "total": total, "next": following}
 
 
 @router.get("/api/rooms/{room_id}", response_model=RoomDetail, responses=_ERRORS, tags=["rooms"])
-async def show_room(live: RoomDep) -> dict[str, Any]:
-    """The room and its full public state (the WebSocket `state` body)."""
-    state = live.state_message().model_dump(mode="json", exclude={"type", "seq"})
-    return {**live.room.summary(), "state": state}
+async def show_room(
+    room_id: str, request: Request, registry: Registry, settings: SettingsDep, cluster: ClusterDep
+) -> dict[str, Any]:
+    """The room, its full public state (the WebSocket `state` body) and `ws_url`."""
+    live = registry.get(room_id)
+    if live is None and cluster is not None:
+        node = await routing.room_owner(cluster, room_id)
+        return await routing.forward(cluster, node, "show", {"room_id": room_id})
+    if live is None:
+        raise HTTPException(404, {"code": "unknown_room", "message": "No such room."})
+    shown = routing.show(live, routing.base_url(settings, cluster, str(request.base_url)))
+    return {**shown, "ranked": tables_of(request).is_ranked(room_id)}
 
 
 @router.post("/api/rooms/{room_id}/join", response_model=Joined, responses=_ERRORS, tags=["rooms"])
 async def join_room(
-    room_id: str, body: JoinRoom, live: RoomDep, quotas: Quotas, client: ClientId
+    room_id: str,
+    body: JoinRoom,
+    request: Request,
+    registry: Registry,
+    settings: SettingsDep,
+    quotas: Quotas,
+    client: ClientId,
+    cluster: ClusterDep,
 ) -> dict[str, Any]:
-    """Take the first free seat. The token is shown once; keep it to connect and reconnect.
-    429: this client took too many seats within the rate window."""
+    """Take the first free seat. The token is shown once; keep it to connect and reconnect
+    (at `ws_url`). A player with a profile (its cookie) sitting here already gets the same
+    seat and token back. A ranked table needs `ranked: true` (the player's agreement) and a
+    profile, else 409 `ranked_needs_agreement` and nobody is seated. 429: this client took
+    too many seats within the rate window."""
     if not quotas.allow("join", client):
         raise HTTPException(
             429, {"code": "rate_limited", "message": "Too many seats taken; wait a minute."}
         )
+    key = player_seat_key(request)  # a player with a profile sits with their own token
+    live = registry.get(room_id)
+    if live is None and cluster is not None:
+        node = await routing.room_owner(cluster, room_id)
+        args = {"room_id": room_id, "name": body.name, "key": key}
+        joined = await routing.forward(cluster, node, "join", args)
+        remember_seat(request, room_id, joined["seat"])
+        return joined
+    agreed = None
+    if live is not None and tables_of(request).is_ranked(room_id):
+        agreed = await asking_player(request) if body.ranked else None
+        if agreed is None:  # no agreement (or no profile): nobody is seated
+            raise HTTPException(409, NEEDS_AGREEMENT)
+        live = registry.get(room_id)  # as it is after the wait
+    if live is None:
+        raise HTTPException(404, {"code": "unknown_room", "message": "No such room."})
+    base = routing.base_url(settings, cluster, str(request.base_url))
+    joined = routing.join(live, body.name, base, key)
+    if agreed is not None:
+        seat_agreed(request, live, joined["seat"], agreed)
+    remember_seat(request, room_id, joined["seat"])
+    return joined
+
+
+class HintRequest(BaseModel):
+    token: str = Field(min_length=1, max_length=200, description="the seat's token")
+
+
+class Hint(BaseModel):
+    """The strongest level's plan for the shot: what it would play, not played."""
+
+    level: str  # the level that planned it (the strongest)
+    kind: str  # "pot", "safety", "kick", "break" or "push"
+    place: tuple[float, float] | None  # where it would put the cue ball (ball in hand)
+    call: int | None  # the pocket it would call (8-ball's 8)
+    angle: float  # cue direction, radians
+    speed: float  # cue-ball speed, m/s
+    tip: tuple[float, float]  # (side, height) of the cue tip, fractions of the radius
+    target: int | None  # the ball it plays at
+    pocket: int | None  # the pocket it plays for
+    chance: float | None  # the share of its noisy trials that pocketed a ball legally
+
+
+_HINT_STATUS = {"bad_token": 403, "not_practice": 409, "not_your_turn": 409, "hint_pending": 429}
+
+
+@router.post(
+    "/api/rooms/{room_id}/hint",
+    response_model=Hint,
+    responses={**_ERRORS, 403: {"model": ErrorResponse}, 429: {"model": ErrorResponse}},
+    tags=["rooms"],
+)
+async def hint(
+    room_id: str, body: HintRequest, registry: Registry, settings: SettingsDep
+) -> dict[str, Any]:
+    """Practice: "Show me a shot". The strongest computer level plans the player's shot
+    (off the event loop) and the plan comes back without being played. 403 for a token that
+    is not this table's, 409 when the table is not practice or not at rest for the player,
+    429 while a hint for the table is being planned."""
+    live = registry.get(room_id)
+    if live is None:
+        raise HTTPException(404, {"code": "unknown_room", "message": "No such room."})
     try:
-        seat, token = live.room.join(body.name)
+        turn = await plan_hint(live.room, body.token, settings.computer_workers)
     except ActionError as exc:
-        code = 409 if exc.code == "room_full" else 422
-        raise HTTPException(code, {"code": exc.code, "message": exc.message}) from None
-    live.on_joined(seat)
-    return {"room_id": room_id, "seat": seat, "token": token, "name": live.room.name_of(seat)}
+        raise HTTPException(
+            _HINT_STATUS.get(exc.code, 409), {"code": exc.code, "message": exc.message}
+        ) from None
+    if turn.shot is None:  # a decision: practice has none, but say so plainly if it comes
+        raise HTTPException(
+            409, {"code": "not_your_turn", "message": "There is a decision to make, not a shot."}
+        )
+    return {
+        "level": HINT_LEVEL,
+        "kind": turn.kind or "pot",
+        "place": turn.place,
+        "call": turn.call,
+        "angle": turn.shot.angle,
+        "speed": turn.shot.speed,
+        "tip": turn.shot.tip,
+        "target": turn.target,
+        "pocket": turn.pocket,
+        "chance": turn.chance,
+    }
 
 
 __all__ = ["RoomSummary", "router"]

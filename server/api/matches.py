@@ -176,8 +176,8 @@ async def replay_shot(
     settings: SettingsDep,
     pace: Annotated[float, Query(ge=0.1, le=100, allow_inf_nan=False)] = 1.0,
 ) -> StreamingResponse:
-    """Stream stored shot `n`'s `frame` and `event` messages exactly as the room sent them
-    live (same format, same timing; `pace` 2 plays twice as fast), then its `shot_result`.
+    """Stored shot `n`'s `motion` message exactly as the room sent it live (base64 in a
+    JSON line), then its `shot_result` once the shot has played (`pace` 2: twice as fast).
     Newline-delimited JSON. 409 `engine_changed`: an old shot whose motion was not kept,
     played by an engine other than this server's."""
 
@@ -190,11 +190,9 @@ async def replay_shot(
     if shot is None:
         raise _missing("shot")
     try:
-        messages = await asyncio.to_thread(
-            replay_motion, shot, settings.frame_every, settings.frames_per_message
-        )
+        motion = await asyncio.to_thread(replay_motion, shot, settings.frame_every)
     except EngineChanged as exc:
         raise HTTPException(409, {"code": "engine_changed", "message": str(exc)}) from None
     return StreamingResponse(
-        stream_replay(messages, shot, match, pace), media_type="application/x-ndjson"
+        stream_replay(motion, shot, match, pace), media_type="application/x-ndjson"
     )

@@ -17,8 +17,11 @@ class ClientQuotas:
         self._items: dict[str, RateLimitItem] = {
             "create": parse(settings.room_create_rate),
             "join": parse(settings.join_rate),
+            "player": parse(settings.player_create_rate),  # new profiles, per address
+            "queue": parse(settings.queue_rate),  # Play now joins and leaves, per player
         }
 
     def allow(self, action: str, client: str) -> bool:
-        """Count one `action` ("create" or "join") by `client`; False once over its limit."""
+        """Count one `action` ("create", "join", "player" or "queue") by `client` (an
+        address; a player id for "queue"); False once over its limit."""
         return self._limiter.hit(self._items[action], action, client)

@@ -26,6 +26,9 @@ class CreateRoom(Strict):
     opponent: str | None = Field(
         None, description=f"play the computer at this level: one of {', '.join(LEVELS)}"
     )
+    ranked: bool = Field(
+        False, description="rated when both players agree (8-ball/9-ball, two players, a profile)"
+    )
 
     @field_validator("opponent")
     @classmethod
@@ -47,7 +50,9 @@ class RoomCreated(BaseModel):
     seats: int
     listed: bool
     opponent: str | None  # the computer's level, when it plays the second seat
+    ranked: bool = False  # rated when both players agree (see `JoinRoom.ranked`)
     url: str
+    ws_url: str  # the room's WebSocket, on the server that plays it
 
 
 class RoomSummary(BaseModel):
@@ -61,6 +66,7 @@ class RoomSummary(BaseModel):
     spectators: int
     score: list[int] | None
     created_at: float
+    ranked: bool = False  # a friends' table rated when both agree: join with `ranked: true`
 
 
 class RoomList(BaseModel):
@@ -71,12 +77,14 @@ class RoomList(BaseModel):
 
 class RoomDetail(RoomSummary):
     state: dict
+    ws_url: str  # where to connect for this room now
 
 
 class JoinRoom(Strict):
     name: Annotated[
         str, Field(min_length=1, max_length=MAX_NAME, description="1-24 printable characters")
     ]
+    ranked: bool = Field(False, description="agree that a ranked table changes your rating")
 
 
 class Joined(BaseModel):
@@ -84,6 +92,7 @@ class Joined(BaseModel):
     seat: int
     token: str
     name: str
+    ws_url: str  # where to connect with the token now
 
 
 class Health(BaseModel):

@@ -21,7 +21,7 @@ from server.rooms import LiveRoom
 from server.rooms.connection import Connection, cancel_quietly
 from server.rooms.ratelimit import TokenBucket
 
-from .deps import Registry, SettingsDep
+from .deps import ClusterDep, Registry, SettingsDep
 from .origin import origin_allowed
 
 router = APIRouter()
@@ -37,19 +37,22 @@ async def room_socket(
     room_id: str,
     settings: SettingsDep,
     registry: Registry,
+    cluster: ClusterDep,
     token: str | None = None,
 ) -> None:
-    if not origin_allowed(
-        websocket.headers.get("origin"),
-        websocket.headers.get("host"),
-        settings.allowed_origins,
-        settings.public_url,
-    ):
+    origin, host = websocket.headers.get("origin"), websocket.headers.get("host")
+    allowed = origin_allowed(origin, host, settings.allowed_origins, settings.public_url)
+    if not allowed and cluster is not None:  # a page served by any live server may connect
+        peers = (*settings.allowed_origins, *await cluster.fresh_origins())
+        allowed = origin_allowed(origin, host, peers, settings.public_url)
+    if not allowed:
         await websocket.close(CLOSE_POLICY, "origin_not_allowed")
         return
     live = registry.get(room_id)
     if live is None:
-        await websocket.close(CLOSE_POLICY, "unknown_room")
+        # Another server plays it (or will in a moment): GET /api/rooms/{id} says where.
+        reason = "room_moved" if cluster is not None else "unknown_room"
+        await websocket.close(CLOSE_POLICY, reason)
         return
     seat = None
     if token is not None:
@@ -68,6 +71,7 @@ async def room_socket(
         limit=settings.send_queue,
         send_timeout=settings.send_timeout,
         chat_credit=chat_credit(settings, spectator=seat is None),
+        send_bytes=websocket.send_bytes,
     )
     live.attach(conn)
     sender = asyncio.create_task(conn.run_sender())

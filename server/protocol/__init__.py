@@ -1,11 +1,12 @@
 """The wire protocol, shared by the live rooms and the HTTP API: every message model (in
-and out), the one encoder, the compiled frame codec and the plan of a shot's stream.
+and out), the one encoder, and a shot's motion: traced, packed and planned.
 
 It sits below `rooms` and `api` and imports only the engine (for its limits and results).
 """
 
 from .inbound import AnyClientMessage, BadMessage, parse_client_message
 from .limits import LIMITS, PROTOCOL_VERSION, Limits, StreamRates
+from .motion import Tracks, run_traced, trace
 from .plan import BallRow, ShotPlan, StreamFrames, Timed, frame_rows, message_text, plan_shot
 
 __all__ = [
@@ -19,8 +20,11 @@ __all__ = [
     "StreamFrames",
     "StreamRates",
     "Timed",
+    "Tracks",
     "frame_rows",
     "message_text",
     "parse_client_message",
     "plan_shot",
+    "run_traced",
+    "trace",
 ]

@@ -46,6 +46,9 @@ class Shoot(ClientMessage):
         return self
 
 
+Coordinate = Annotated[float, Field(ge=-10.0, le=10.0)]
+
+
 class PlaceCue(ClientMessage):
     """Ball in hand: put the cue ball at (x, y) metres."""
 
@@ -61,6 +64,8 @@ class Aim(ClientMessage):
     angle: Angle
     power: Annotated[float, Field(ge=0.0, le=1.0)]
     tip: Tip = (0.0, 0.0)
+    # Ball in hand: where the cue ball is being dragged (metres), so the others see it move.
+    cue: tuple[Coordinate, Coordinate] | None = None
 
     @model_validator(mode="after")
     def _tip_in_circle(self) -> Aim:

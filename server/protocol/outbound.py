@@ -1,8 +1,8 @@
 """What the server sends: every message a pydantic model, and the union a client parses.
 
-Rooms build each message from its model (`text` encodes it). The hot `frame` and `event`
-messages are the exception: a shot's are encoded once, off the event loop, by `plan` and the
-compiled `frame_codec`; tests check those bytes against `FrameMessage` and `EventMessage`.
+Rooms build each message from its model (`text` encodes it). A shot's motion is the
+exception: one binary WebSocket message packed by `protocol.motion` (docs/protocol.md,
+`motion`); the replay route carries the same bytes in base64 in a `MotionMessage`.
 """
 
 from __future__ import annotations
@@ -16,7 +16,6 @@ from server.rules import Outcome
 from .limits import PROTOCOL_VERSION, Limits
 
 BallRowModel = tuple[int, int, int, int]  # [id, x_mm, y_mm, cel]
-SoundKind = Literal["strike", "ball", "cushion", "jaw", "pocket"]
 ResultCause = Literal["shot", "timeout", "concede", "forfeit"]
 
 
@@ -59,6 +58,15 @@ class ShotInfo(ServerMessage):
     ticks: int
 
 
+class ChatLine(ServerMessage):
+    """One line of the room's chat, as the `chat` message carried it."""
+
+    seat: int | None
+    name: str
+    text: str
+    at: float
+
+
 class RoomInfo(ServerMessage):
     room_id: str
     game: str
@@ -69,6 +77,7 @@ class RoomInfo(ServerMessage):
     players: list[PlayerInfo]
     spectators: int
     rematch: list[int]
+    abandoned: bool = False
 
 
 class Welcome(ServerMessage):
@@ -89,52 +98,13 @@ class Welcome(ServerMessage):
     limits: Limits
 
 
-class AheadFrame(BaseModel):
-    """A later tick sent early inside a `frame` message, to be shown at its own tick."""
+class MotionMessage(Sequenced):
+    """A shot's binary `motion` message as a JSON line of a replay: `data` is its bytes in
+    base64 (live, the room sends the bytes themselves, as a binary WebSocket message)."""
 
-    model_config = ConfigDict(extra="forbid")
-    tick: int
-    b: list[BallRowModel]
-    last: bool | None = None
-
-
-class FrameMessage(Sequenced):
-    """One streamed tick: `b` holds [id, x_mm, y_mm, cel] for every ball on the table;
-    `ahead` the next ticks of the stream, sent early (`frames_per_message` - 1 of them)."""
-
-    type: Literal["frame"] = "frame"
+    type: Literal["motion"] = "motion"
     shot: int
-    tick: int
-    b: list[BallRowModel]
-    ahead: list[AheadFrame] | None = None
-    last: bool | None = None
-
-
-class AlsoEvent(BaseModel):
-    """A later sound of the same stretch of the shot, carried by an `event` message."""
-
-    model_config = ConfigDict(extra="forbid")
-    tick: int
-    t: float
-    kind: SoundKind
-    ids: list[int]
-    speed: float
-    target: int
-
-
-class EventMessage(Sequenced):
-    """A sound; `also`: the ones that follow within one frame message's span, each to be
-    played at its own `t`."""
-
-    type: Literal["event"] = "event"
-    shot: int
-    tick: int
-    t: float
-    kind: SoundKind
-    ids: list[int]
-    speed: float
-    target: int
-    also: list[AlsoEvent] | None = None
+    data: str
 
 
 class ShotResultMessage(Sequenced):
@@ -176,6 +146,7 @@ class StateMessage(Sequenced):
     clock: ClockInfo | None
     grace: list[GraceInfo]
     match: dict[str, Any] | None
+    chat: list[ChatLine] | None = None
 
 
 class AimRelay(ServerMessage):
@@ -186,6 +157,8 @@ class AimRelay(ServerMessage):
     angle: float
     power: float
     tip: tuple[float, float]
+    # Ball in hand: where the cue ball is being dragged; left out of the message otherwise.
+    cue: tuple[float, float] | None = Field(default=None, exclude_if=lambda v: v is None)
 
 
 class ChatMessage(Sequenced):
@@ -220,8 +193,6 @@ class ErrorMessage(ServerMessage):
 
 AnyServerMessage = Annotated[
     Welcome
-    | FrameMessage
-    | EventMessage
     | ShotResultMessage
     | StateMessage
     | AimRelay
@@ -231,9 +202,7 @@ AnyServerMessage = Annotated[
     | ErrorMessage,
     Field(discriminator="type"),
 ]
-AnyReplayMessage = Annotated[
-    FrameMessage | EventMessage | ReplayResultMessage, Field(discriminator="type")
-]
+AnyReplayMessage = Annotated[MotionMessage | ReplayResultMessage, Field(discriminator="type")]
 server_messages: TypeAdapter[AnyServerMessage] = TypeAdapter(AnyServerMessage)
 replay_messages: TypeAdapter[AnyReplayMessage] = TypeAdapter(AnyReplayMessage)
 

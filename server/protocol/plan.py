@@ -1,29 +1,31 @@
-"""Turn a simulated shot into the timed messages a room streams (pure, no I/O).
+"""What a room sends for one shot (pure, no I/O): the binary `motion` message.
 
-Frames go out every `frame_every` ticks (plus the last tick) with integer millimetres;
-events go out at their time, before the frame of the tick they fall in, those within one
-frame message's span of each other in one message (`also`). `rest` events are left out:
-clients make sounds from the others.
+The whole shot is simulated before anyone sees it, so its motion goes out at once, at the
+strike: every ball's exact track (`protocol.motion`) and its sounds. Clients play it on
+their own clock. The room keeps the shot's frames every `frame_every` ticks (integer
+millimetres) only for the `state` of a member who joins while the balls roll. `rest`
+events make no sound and are not sent.
 """
 
 from __future__ import annotations
 
+import base64
 import json
 import math
-from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
 
-from server.engine import Event, ShotResult
+from server.engine import BALL_RADIUS, TICK_HZ, Event, ShotResult
 
-from .frame_codec import encode_frames
+from .motion import Tracks, motion_bytes, pack_tracks
 
 SOUND_KINDS = frozenset(("strike", "ball", "cushion", "jaw", "pocket"))
 ALWAYS_SENT = frozenset(("strike", "pocket"))
 MAX_SOUNDS_PER_TICK = 12  # a rack's contacts can come by the thousand in one tick
 SOUND_GAP = 0.05  # s: the same contact again within this is one sound
+CELS = 16  # sprite cels per turn
 
 BallRow = tuple[int, int, int, int]  # id, x_mm, y_mm, cel
 
@@ -37,19 +39,15 @@ def message_text(kind: str, seq: int, body: str) -> str:
 
 
 class Timed(NamedTuple):
-    """One message of the stream, `at` seconds after the strike. (A named tuple: a shot
-    makes dozens of these on the event loop, and a frozen dataclass is slow to build.)"""
+    """A point of the shot being shown, `at` seconds after the strike: the room remembers
+    the frame a member joining now is shown (`Room.show`)."""
 
     at: float
-    kind: str  # "frame" or "event"
-    body: str  # the JSON without `type` and `seq`, which the room adds on sending
+    kind: str  # "frame"
+    body: str  # unused since the `motion` message ("")
     droppable: bool
     tick: int = 0
-    frame: int | None = None  # for frames: the index in the plan's `StreamFrames`
-
-    @property
-    def payload(self) -> dict:
-        return {"type": self.kind, **json.loads(self.body)}
+    frame: int | None = None  # the index in the plan's `StreamFrames`
 
 
 def frame_rows(
@@ -96,16 +94,28 @@ class StreamFrames:
 
 @dataclass(frozen=True)
 class ShotPlan:
-    """Everything a room streams for one shot, encoded once, in sending order."""
+    """Everything a room sends for one shot, encoded once: the binary `motion` message
+    (sent whole at the strike, its `seq` set per broadcast), and the frames a member
+    joining mid-shot is shown in `state.balls`."""
 
+    shot_id: int
     frames: StreamFrames
-    messages: list[Timed]
+    motion: bytes  # the `motion` message with seq 0
+    duration: float  # s from the strike to the last tick
+    sounds: int  # how many sounds it carries
 
-    def __iter__(self) -> Iterator[Timed]:
-        return iter(self.messages)
+    def shown_at(self, elapsed: float) -> Timed:
+        """The frame of the stream `elapsed` seconds after the strike (the latest due)."""
+        ticks = self.frames.ticks
+        j = max(0, int(np.searchsorted(ticks, elapsed * TICK_HZ, side="right")) - 1)
+        tick = int(ticks[j])
+        return Timed(tick / TICK_HZ, "frame", "", True, tick=tick, frame=j)
 
-    def __len__(self) -> int:
-        return len(self.messages)
+    @property
+    def last(self) -> Timed:
+        j = len(self.frames) - 1
+        tick = int(self.frames.ticks[j])
+        return Timed(tick / TICK_HZ, "frame", "", False, tick=tick, frame=j)
 
 
 def stream_frames(result: ShotResult, frame_every: int) -> StreamFrames:
@@ -135,76 +145,18 @@ def stream_frames(result: ShotResult, frame_every: int) -> StreamFrames:
     )
 
 
-def plan_shot(
-    result: ShotResult, shot_id: int, frame_every: int, frames_per_message: int = 1
-) -> ShotPlan:
-    """Every frame and event message of a shot, encoded, in sending order.
+def plan_shot(result: ShotResult, tracks: Tracks, shot_id: int, frame_every: int) -> ShotPlan:
+    """The shot's `motion` message (its exact tracks and its sounds) and its frames.
 
-    With `frames_per_message` m > 1 a `frame` message goes out every m-th frame and carries
-    the next m-1 frames early in `ahead` (the client plays them at their own ticks): the
-    same positions at 1/m of the messages, which is what a server pays for per client.
-    The last frame always goes alone, at its time."""
-    if frames_per_message < 1:
-        raise ValueError("frames_per_message must be at least 1")
-    tick = result.frames.tick
-    frames = stream_frames(result, frame_every)
-    last = len(frames) - 1
-    bodies = encode_frames(
-        shot_id, frames.ticks, frames.ids, frames.mm, frames.cels, frames.on_table, last
-    )
-    ticks = frames.ticks.tolist()
-    items: list[tuple[float, int, Timed]] = []
-    for j in [*range(0, last, frames_per_message), last]:
-        body = bodies[j]
-        ahead = range(j + 1, min(j + frames_per_message, last))
-        if ahead:
-            rest = ",".join("{" + bodies[i][bodies[i].index('"tick"') :] for i in ahead)
-            body = f'{body[:-1]},"ahead":[{rest}]}}'
-        at = ticks[j] * tick
-        items.append((at, 1, Timed(at, "frame", body, j != last, tick=ticks[j], frame=j)))
-    window = frame_every * frames_per_message * tick  # the span of one frame message
-    for group in _grouped(_sounds(result.events, tick), window):
-        (event_tick, event), later = group[0], group[1:]
-        body = event_body(shot_id, event_tick, event)
-        if later:
-            also = ",".join("{" + _without_shot(event_body(shot_id, t, e)) for t, e in later)
-            body = f'{body[:-1]},"also":[{also}]}}'
-        items.append((event.time, 0, Timed(event.time, "event", body, False, tick=event_tick)))
-    items.sort(key=lambda item: (item[0], item[1]))
-    return ShotPlan(frames, [timed for _, _, timed in items])
-
-
-def event_body(shot_id: int, event_tick: int, event: Event) -> str:
-    """The JSON of an `event` message without `type` and `seq`: what `server.codec.encode` gives for
-    {"shot", "tick", "t", "kind", "ids", "speed", "target"}, by string formatting (a shot
-    has dozens; json.dumps was a fifth of planning it)."""
-    t, speed = round(event.time, 4), round(event.speed, 3)
-    if not (math.isfinite(t) and math.isfinite(speed)):
-        raise ValueError("an event time or speed is not finite")
-    ids = ",".join(str(int(i)) for i in event.ids)
-    return (
-        f'{{"shot":{int(shot_id)},"tick":{int(event_tick)},"t":{t!r},'
-        f'"kind":{json.dumps(event.kind)},"ids":[{ids}],"speed":{speed!r},'
-        f'"target":{int(event.target)}}}'
-    )
-
-
-def _without_shot(body: str) -> str:
-    return body[body.index('"tick"') :]
-
-
-def _grouped(sounds: list[tuple[int, Event]], window: float) -> list[list[tuple[int, Event]]]:
-    """Sounds in runs that start within `window` seconds of a run's first one: each run is
-    one `event` message (the first event, the others in `also`), sent at the first one's
-    time. A break's contacts came as dozens of messages a second per member, more than its
-    frame messages; the client plays each sound at its own `t` anyway."""
-    runs: list[list[tuple[int, Event]]] = []
-    for item in sounds:
-        if runs and item[1].time < runs[-1][0][1].time + window:
-            runs[-1].append(item)
-        else:
-            runs.append([item])
-    return runs
+    `tracks` must be the same shot traced (`protocol.motion.trace`): its ticks are the
+    engine's, which is checked."""
+    if tracks.ticks != len(result.frames):
+        raise ValueError("the traced shot is not the simulated one")
+    sounds = [event for _, event in _sounds(result.events, result.frames.tick)]
+    duration = result.duration
+    balls = int(np.count_nonzero(np.diff(tracks.offsets)))
+    message = motion_bytes(shot_id, duration, tracks.packed, balls, sounds)
+    return ShotPlan(shot_id, stream_frames(result, frame_every), message, duration, len(sounds))
 
 
 def _sounds(events: list[Event], tick: float) -> list[tuple[int, Event]]:
@@ -235,15 +187,82 @@ def _sounds(events: list[Event], tick: float) -> list[tuple[int, Event]]:
 
 
 def motion_text(plan: ShotPlan) -> str:
-    """The messages a shot streamed, one a line (`at kind body`): what is stored to replay
-    exactly what was shown, whatever engine runs the replay."""
-    return "".join(f"{timed.at!r} {timed.kind} {timed.body}\n" for timed in plan.messages)
+    """What is stored to replay exactly what was shown, whatever engine runs the replay:
+    one line, `0.0 motion <base64 of the motion message>` (older shots stored their
+    `frame` and `event` messages, one a line: `at kind body`)."""
+    return f"0.0 motion {base64.b64encode(plan.motion).decode('ascii')}\n"
 
 
 def motion_messages(text: str) -> list[tuple[float, str, str]]:
-    """The inverse of `motion_text`: (at, kind, body) in sending order."""
+    """The inverse of `motion_text` (and of the older form): (at, kind, body) in order."""
     out = []
     for line in text.splitlines():
         at, kind, body = line.split(" ", 2)
         out.append((float(at), kind, body))
     return out
+
+
+def stored_motion(text: str, shot_id: int) -> bytes:
+    """The `motion` message of a stored shot (`motion_text`). A shot stored before the
+    `motion` message kept its `frame` and `event` messages: their frames (every 6th tick,
+    millimetres, cels) become the knots of its tracks, their sounds its sounds."""
+    lines = motion_messages(text)
+    if len(lines) == 1 and lines[0][1] == "motion":
+        return base64.b64decode(lines[0][2], validate=True)
+    frames: dict[int, list[list[int]]] = {}
+    sounds: list[Event] = []
+    for _, kind, body in lines:
+        message = json.loads(body)
+        if kind == "frame":
+            for frame in [message, *message.get("ahead", ())]:
+                frames[frame["tick"]] = frame["b"]
+        elif kind == "event":
+            for e in [message, *message.get("also", ())]:
+                sounds.append(Event(e["t"], e["kind"], tuple(e["ids"]), e["speed"], e["target"]))
+    ticks = sorted(frames)
+    ids = sorted({row[0] for rows in frames.values() for row in rows})
+    column = {ball: i for i, ball in enumerate(ids)}
+    count, n = len(ticks), len(ids)
+    positions = np.zeros((count, n, 2))
+    cels = np.zeros((count, n), dtype=np.int64)
+    on = np.zeros((count, n), dtype=np.bool_)
+    for j, tick in enumerate(ticks):
+        for ball, x, y, cel in frames[tick]:
+            positions[j, column[ball]] = (x / 1000.0, y / 1000.0)
+            cels[j, column[ball]] = cel
+            on[j, column[ball]] = True
+    phases = _unwrapped(positions, cels, on)
+    knots: list[int] = []
+    offsets = [0]
+    for b in range(n):
+        knots.extend(np.flatnonzero(on[:, b]).tolist())
+        offsets.append(len(knots))
+    pockets = np.full(n, -1, dtype=np.int64)
+    for sound in sounds:
+        if sound.kind == "pocket" and sound.ids[0] in column:
+            pockets[column[sound.ids[0]]] = sound.target
+    packed = pack_tracks(
+        np.array(ids, dtype=np.int64),
+        pockets,
+        np.array(ticks, dtype=np.float64) / TICK_HZ,
+        positions,
+        phases,
+        np.array(knots, dtype=np.int64),
+        np.array(offsets, dtype=np.int64),
+    ).tobytes()
+    sounds.sort(key=lambda e: e.time)
+    duration = ticks[-1] / TICK_HZ if ticks else 0.0
+    return motion_bytes(shot_id, duration, packed, n, sounds)
+
+
+def _unwrapped(positions: np.ndarray, cels: np.ndarray, on: np.ndarray) -> np.ndarray:
+    """Rolled angles from sprite cels (which wrap every turn): each step the number of cels
+    nearest to the distance rolled (what the web client did with such frames)."""
+    cel = 2 * math.pi / CELS
+    phases = (cels + 0.5) * cel
+    for j in range(1, len(cels)):
+        rolled = np.hypot(*(positions[j] - positions[j - 1]).T) / (2 * math.pi * BALL_RADIUS)
+        base = (cels[j] - cels[j - 1]) % CELS
+        step = base + np.round((rolled * CELS - base) / CELS) * CELS
+        phases[j] = np.where(on[j] & on[j - 1], phases[j - 1] + step * cel, phases[j])
+    return phases

@@ -1,24 +1,34 @@
 """The computer's seat in a room: when the match waits for it, think (off the event loop),
 show the cue moving, then act through the same room actions as a person.
 
-The search runs in a thread (`Bot.plan` spends its time in the engine's compiled code, which
-releases the GIL), on a copy of the game, so no other room waits for it. Its random draws
-come from the room's seed and the shot number: a replayed position gets the same turn.
+The search runs in a worker process (`POOL_COMPUTER_WORKERS`, shared by every room of this
+server, at a lower CPU priority than the rooms' event loop), on the game's data. Not in a
+thread: about half of a plan is Python holding the GIL (the rules judging each simulated
+shot), which the event loop needs for every other room (`python -m bench.ai --only loop`
+measures the difference). With no workers
+(`POOL_COMPUTER_WORKERS=0`) it plans in a thread, and a worker process that dies falls
+back to that. A plan depends only on the position, the level and the room's seed, so a
+replayed position gets the same turn.
 """
 
 from __future__ import annotations
 
 import asyncio
 import logging
+import multiprocessing
+import os
 from collections.abc import Callable
+from concurrent.futures import Executor, ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
 from server.ai import Bot, Turn
-from server.codec import from_data, to_data
+from server.ai.play import plan_data, warm_up
+from server.codec import to_data
 from server.engine import Shot
-from server.rules import Game
 
 from .errors import ActionError
 from .room import Room
@@ -26,6 +36,40 @@ from .room import Room
 log = logging.getLogger(__name__)
 AIM_STEPS = 6  # aim relays while the cue swings round to the shot
 MAX_STEPS = 4  # turns in a row before handing back (decision, then its shot, ...)
+WORKER_NICE = 10  # the planners yield the cores to the rooms' event loop when both want one
+_pools: dict[int, ProcessPoolExecutor] = {}  # workers -> the pool this process shares
+
+
+def _pool(workers: int) -> ProcessPoolExecutor:
+    """The planner processes shared by every computer seat of this server (started on the
+    first plan; spawned, so they share nothing with the event loop's process)."""
+    pool = _pools.get(workers)
+    if pool is None:
+        pool = _pools[workers] = ProcessPoolExecutor(
+            workers,
+            mp_context=multiprocessing.get_context("spawn"),
+            initializer=_start_worker,
+        )
+    return pool
+
+
+def _start_worker() -> None:
+    os.nice(WORKER_NICE)
+    warm_up()
+
+
+async def plan_turn(level: str, seed: int, game: dict[str, Any], seat: int, workers: int) -> Turn:
+    """`Bot(level, seed).plan` of the game data `game` for `seat`, off the event loop: in a
+    planner process when `workers` > 0, else in a thread."""
+    loop = asyncio.get_running_loop()
+    if workers > 0:
+        pool: Executor = _pool(workers)
+        try:
+            return await loop.run_in_executor(pool, plan_data, level, seed, game, seat)
+        except BrokenProcessPool:
+            log.error("a computer planner process died; planning in a thread this time")
+            _pools.pop(workers, None)
+    return await asyncio.to_thread(plan_data, level, seed, game, seat)
 
 
 @dataclass
@@ -37,6 +81,7 @@ class ComputerSeat:
     seat: int
     level: str
     pause: float  # s of "thinking" before a turn is shown, at pace 1
+    workers: int = 0  # planner processes (0: plan in a thread)
     bot: Bot = field(init=False)
     task: asyncio.Task | None = field(default=None, init=False)
 
@@ -83,10 +128,10 @@ class ComputerSeat:
         match = self.room.match
         if match is None:
             return False
-        game = from_data(Game, to_data(match.game))  # the search works on its own copy
+        game = to_data(match.game)  # the search works on its own copy
         started = asyncio.get_running_loop().time()
         try:
-            turn = await asyncio.to_thread(self.bot.plan, game, self.seat)
+            turn = await plan_turn(self.level, self.bot.seed, game, self.seat, self.workers)
         except Exception:
             log.exception("room %s: the computer could not plan", self.room.room_id)
             return False
@@ -111,3 +156,28 @@ class ComputerSeat:
             )
             return False
         return True
+
+
+HINT_LEVEL = Bot.LEVELS[-1]  # "Show me a shot" shows what the strongest level would play
+_hinting: set[str] = set()  # rooms with a hint being planned (one at a time each)
+
+
+async def hint(room: Room, token: str, workers: int) -> Turn:
+    """The strongest level's turn for the player of a practice table, planned off the event
+    loop and not taken (the learner sees the ghost ball, aim, power and spin). One hint at
+    a time per table, so a player cannot queue up the planners' time."""
+    seat = room.seat_of(token)
+    if seat is None:
+        raise ActionError("bad_token", "This token does not open a seat at this table.")
+    if not room.practice:
+        raise ActionError("not_practice", "Hints are for practice tables.")
+    match = room.match
+    if match is None or room.acting_seat() != seat or match.game.decision is not None:
+        raise ActionError("not_your_turn", "A hint is for a table at rest, your shot to play.")
+    if room.room_id in _hinting:
+        raise ActionError("hint_pending", "A hint for this table is on its way already.")
+    _hinting.add(room.room_id)
+    try:
+        return await plan_turn(HINT_LEVEL, room.seed, to_data(match.game), seat, workers)
+    finally:
+        _hinting.discard(room.room_id)

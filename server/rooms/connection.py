@@ -42,14 +42,16 @@ class Connection:
     close_code: int | None = None  # set when the room wants this connection gone
     close_reason: str = ""
     flushing: bool = False  # closing, but sending what is queued first
-    _queue: deque[tuple[str, int]] = field(default_factory=deque)  # (text, priority)
+    _queue: deque[tuple[str | bytes, int]] = field(default_factory=deque)  # (message, priority)
     _social: int = 0  # social messages in the queue
     chat_credit: TokenBucket | None = None  # None: chat is not limited
     _wake: asyncio.Event = field(default_factory=asyncio.Event)
     _sending_since: float | None = None  # loop time the batch being sent started
     _sender: asyncio.Task | None = None
+    # Binary messages (a shot's `motion`); without it they are not sent (test doubles).
+    send_bytes: Callable[[bytes], Awaitable[None]] | None = None
 
-    def push(self, text: str, droppable: bool = False, social: bool = False) -> None:
+    def push(self, text: str | bytes, droppable: bool = False, social: bool = False) -> None:
         """Queue a message without waiting; never blocks the caller. `droppable`: a newer
         one supersedes it (frames, aim); `social`: chat and presence, kept only while
         there is room."""
@@ -121,7 +123,10 @@ class Connection:
                         break
                     text, priority = self._queue.popleft()
                     self._social -= priority == SOCIAL
-                    await self.send_text(text)
+                    if isinstance(text, str):
+                        await self.send_text(text)
+                    elif self.send_bytes is not None:
+                        await self.send_bytes(text)
             finally:
                 self._sending_since = None
 

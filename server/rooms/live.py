@@ -16,11 +16,19 @@ from dataclasses import dataclass
 from server.ai import Turn
 from server.config import Settings
 from server.engine import TICK_HZ, BallSet, Shot
-from server.protocol import LIMITS, Timed, message_text
-from server.protocol.inbound import AnyClientMessage, Chat, Concede, Decide, PlaceCue, Shoot
+from server.protocol import LIMITS, ShotPlan
+from server.protocol.inbound import (
+    Aim,
+    AnyClientMessage,
+    Chat,
+    Concede,
+    Decide,
+    PlaceCue,
+    Shoot,
+)
+from server.protocol.motion import with_seq
 from server.protocol.outbound import (
     AimRelay,
-    ChatMessage,
     ClockInfo,
     ErrorMessage,
     GraceInfo,
@@ -43,24 +51,11 @@ from .errors import ActionError
 from .metrics import StreamMetrics
 from .observer import NullObserver, RoomObserver
 from .ratelimit import TokenBucket
-from .room import Room
+from .room import Room, Seat
 from .shot_runner import ShotRunner
 
 log = logging.getLogger(__name__)
 SLOW_SHOT = 0.25  # s from strike to stream start worth a warning in the log
-
-
-def superseded_times(plan: list[Timed]) -> list[float]:
-    """For each message, when the next frame after it is due (inf if none): a frame whose
-    successor is already due when it comes up is stale, so a late loop skips it instead of
-    sending a burst that every member would receive late anyway."""
-    times = [math.inf] * len(plan)
-    next_frame = math.inf
-    for i in range(len(plan) - 1, -1, -1):
-        times[i] = next_frame
-        if plan[i].frame is not None:
-            next_frame = plan[i].at
-    return times
 
 
 @dataclass
@@ -89,10 +84,13 @@ class LiveRoom:
         self.last_activity = self.clock.monotonic()
         self.ever_joined = False
         self.metrics = StreamMetrics(capacity=1)  # the registry shares one for all rooms
-        self.runner = ShotRunner(0, settings.frame_every, settings.frames_per_message)
+        self.runner = ShotRunner(0, settings.frame_every)
         self._clock: _Timer | None = None
         self._grace: dict[int, _Timer] = {}
         self._stream: asyncio.Task | None = None
+        # The shot being shown: its plan, its `motion` message as sent, the loop time of
+        # its start (a member joining now gets the same message and plays from there).
+        self._motion: tuple[ShotPlan, bytes, float] | None = None
         self._presence_timer: asyncio.TimerHandle | None = None
         # All spectators together: however many there are, the players get at most this.
         self._crowd_chat = TokenBucket(
@@ -100,7 +98,9 @@ class LiveRoom:
         )
         self._last_presence = -math.inf
         self.computers = {
-            seat: ComputerSeat(room, seat, level, settings.computer_pause)
+            seat: ComputerSeat(
+                room, seat, level, settings.computer_pause, settings.computer_workers
+            )
             for seat, level in room.computer.items()
         }
         self.closed = False
@@ -115,13 +115,21 @@ class LiveRoom:
         for conn in list(self.members.values()):
             conn.push(encoded, droppable, social)
 
-    def broadcast_body(self, kind: str, body: str, droppable: bool = False) -> None:
-        """`broadcast` of a message whose JSON without `type` and `seq` is ready (`body`):
-        the stream encodes a shot's messages once, off the event loop."""
+    def broadcast_motion(self, plan: ShotPlan) -> None:
+        """The shot's binary `motion` message to every member, with the next sequence
+        number (set in its header once, not per member)."""
         self.seq += 1
-        encoded = message_text(kind, self.seq, body)
+        motion = with_seq(plan.motion, self.seq)
+        self._motion = (plan, motion, asyncio.get_running_loop().time())
         for conn in list(self.members.values()):
-            conn.push(encoded, droppable)
+            conn.push(motion)
+
+    def _show_now(self) -> None:
+        """Bring the room's shown frame up to now, for a `state` sent while balls roll."""
+        if self._motion is not None:
+            plan, _, start = self._motion
+            elapsed = (asyncio.get_running_loop().time() - start) * self.settings.pace
+            self.room.show(plan.shown_at(elapsed), plan.frames)
 
     def relay(self, message: ServerMessage, exclude: Connection | None) -> None:
         """Send to everyone else, without a sequence number, droppable (aim relays)."""
@@ -133,19 +141,21 @@ class LiveRoom:
     def reply(self, conn: Connection, message: ServerMessage) -> None:
         conn.push(text(message))
 
-    def state_message(self) -> StateMessage:
-        return self.room.state_message(self.clock_info(), self.grace_info())
+    def state_message(self, chat: bool = False) -> StateMessage:
+        return self.room.state_message(self.clock_info(), self.grace_info(), chat)
 
-    def state_text(self, seq: int) -> str:
+    def state_text(self, seq: int, chat: bool = False) -> str:
         """The `state` message as JSON, the table's geometry spliced in from its cached
         text: ~1.5 KB that never changes; encoding it after every shot cost ~0.15 ms of the
         loop each time."""
-        message = self.state_message()
+        self._show_now()
+        message = self.state_message(chat)
         message.seq = seq
         return f'{text(message, exclude={"table"})[:-1]},"table":{self.room.table_json()}}}'
 
     def send_state(self, conn: Connection) -> None:
-        conn.push(self.state_text(self.seq))
+        """The `state` for one member (on connecting or `sync`), with the chat so far."""
+        conn.push(self.state_text(self.seq, chat=True))
 
     def broadcast_state(self) -> None:
         self.seq += 1
@@ -209,6 +219,7 @@ class LiveRoom:
             seat = self.room.seats[conn.seat]
             assert seat is not None
             seat.connected = True
+            seat.seen = True
             self._cancel_grace(conn.seat)
         else:
             self.room.spectators += 1
@@ -230,6 +241,8 @@ class LiveRoom:
         )
         self.send_state(conn)
         self.broadcast_presence()
+        if self._motion is not None:  # a shot is being shown: its motion, to play from now
+            conn.push(self._motion[1])
 
     def detach(self, conn: Connection) -> None:
         """A member's socket ended. A player keeps the seat for the grace period."""
@@ -294,16 +307,13 @@ class LiveRoom:
                 line = "".join(ch if ch.isprintable() else " " for ch in msg.text).strip()
                 if not line:
                     raise ActionError("bad_message", "text: the message is empty")
-                self.broadcast(
-                    ChatMessage(
-                        seat=seat, name=room.name_of(seat), text=line, at=self.clock.wall()
-                    ),
-                    social=True,
-                )
+                self.broadcast(room.say(seat, line, self.clock.wall()), social=True)
             case "aim":
+                assert isinstance(msg, Aim)
                 room.check_aim(seat)
                 self.relay(
-                    AimRelay(seat=seat, angle=msg.angle, power=msg.power, tip=msg.tip), exclude=conn
+                    AimRelay(seat=seat, angle=msg.angle, power=msg.power, tip=msg.tip, cue=msg.cue),
+                    exclude=conn,
                 )
             case "shoot":
                 assert isinstance(msg, Shoot)
@@ -414,24 +424,17 @@ class LiveRoom:
         start = loop.time()
         self.metrics.shot_started(start, time.perf_counter() - started)
         pace = self.settings.pace
-        superseded_at = superseded_times(plan.messages)
         try:
-            for timed, stale_at in zip(plan, superseded_at, strict=True):
-                delay = start + timed.at / pace - loop.time()
-                if delay > 0:
-                    await asyncio.sleep(delay)
-                else:
-                    await asyncio.sleep(0)  # running late: still let the senders drain
-                room.show(timed, plan.frames)
-                now = loop.time()
-                if timed.droppable and start + stale_at / pace <= now:
-                    self.metrics.skipped()  # a newer frame is already due: send that one
-                    continue
-                if timed.frame is not None:
-                    self.metrics.sent(now, now - start - timed.at / pace)
-                self.broadcast_body(timed.kind, timed.body, droppable=timed.droppable)
+            # The whole motion at the strike: clients play it on their own clock.
+            self.broadcast_motion(plan)
+            self.metrics.sent(start, loop.time() - start)
+            delay = start + plan.duration / pace - loop.time()
+            if delay > 0:
+                await asyncio.sleep(delay)
+            room.show(plan.last, plan.frames)
         except Exception:  # a bug here must not leave the table busy for ever
             log.exception("streaming shot %s in room %s failed", shot_id, room.room_id)
+        self._motion = None
         # Recorded only now: history, replays and the lobby must not tell a shot's outcome
         # before its members have seen it.
         self.observer.shot_played(room, seat, shot, before, outcome, plan)
@@ -519,7 +522,7 @@ class LiveRoom:
             return
         self._cancel_clock()
         loop = asyncio.get_running_loop()
-        limit = self.room.shot_clock
+        limit = self.room.clock_limit()  # longer on the room's first break
         self._clock = _Timer(
             seat, loop.time() + limit, loop.call_later(limit, self._on_clock, seat)
         )
@@ -556,6 +559,8 @@ class LiveRoom:
         match = self.room.match
         if self.room.practice or match is None or match.over or seat in self._grace:
             return
+        if self.room.abandoned:
+            return
         if seat in self.room.computer:
             return  # the computer never leaves
         loop = asyncio.get_running_loop()
@@ -563,6 +568,20 @@ class LiveRoom:
         self._grace[seat] = _Timer(
             seat, loop.time() + grace, loop.call_later(grace, self._on_grace, seat)
         )
+
+    def _people(self) -> list[Seat | None]:
+        """The seats of people (the computer's seat is not one)."""
+        return [s for i, s in enumerate(self.room.seats) if i not in self.room.computer]
+
+    def _abandon(self) -> None:
+        """Every player is gone past the grace: the match stops without a winner (recorded
+        as abandoned), instead of the absentees forfeiting frames to each other."""
+        for seat in list(self._grace):
+            self._cancel_grace(seat)
+        self._cancel_clock()
+        self.room.abandon()
+        self.broadcast_state()
+        self.observer.room_changed(self.room)
 
     def _cancel_grace(self, seat: int) -> None:
         timer = self._grace.pop(seat, None)
@@ -581,6 +600,10 @@ class LiveRoom:
             return
         if self.room.phase == "rolling":  # let the shot finish first
             timer.handle = asyncio.get_running_loop().call_later(0.2, self._on_grace, seat)
+            return
+        people = [s for s in self._people() if s is not None]
+        if all(s.seen and not s.connected for s in people):  # everyone was here and left
+            self._abandon()
             return
         del self._grace[seat]
         outcome = self.room.forfeit(seat, f"{seat_info.name} left the table and did not come back.")

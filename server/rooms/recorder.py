@@ -8,7 +8,10 @@ a replay shows what was played even after the physics changes.
 
 from __future__ import annotations
 
+import asyncio
 import itertools
+from collections.abc import Callable, Iterator
+from concurrent.futures import Future
 from dataclasses import dataclass
 
 from server.codec import encode, to_data
@@ -16,7 +19,7 @@ from server.engine import ENGINE_VERSION, BallSet, Shot
 from server.protocol import ShotPlan
 from server.protocol.plan import motion_text
 from server.rules import Outcome
-from server.store import Database
+from server.store import Database, Repository, StaleOwner
 
 from .room import Room
 from .snapshot import pending_shot, room_to_snapshot
@@ -26,6 +29,7 @@ from .snapshot import pending_shot, room_to_snapshot
 class _Tracked:
     match_id: int
     finished: bool = False
+    shots: int = 0  # shots played in this match (a match decided without one was abandoned)
 
 
 class StoreObserver:
@@ -33,14 +37,17 @@ class StoreObserver:
 
     def __init__(self, db: Database) -> None:
         self.db = db
-        self._ids = itertools.count(db.run(lambda repo: repo.last_match_id()) + 1)
+        self._ids: Iterator[int] = itertools.count(db.run(lambda repo: repo.last_match_id()) + 1)
+        self._epoch_of: Callable[[str], int | None] = lambda room_id: None
+        self._stale: Callable[[str], None] = lambda room_id: None
         self._matches: dict[str, _Tracked] = {}
         self.active = True  # False once the server shuts down: rooms are kept, not deleted
 
     def room_restored(self, room: Room, match_id: int | None) -> None:
         """A room restored after a restart keeps its match record."""
         if match_id is not None and room.match is not None:
-            self._matches[room.room_id] = _Tracked(match_id, room.match.over)
+            over = room.match.over or room.abandoned
+            self._matches[room.room_id] = _Tracked(match_id, over, room.shots_played)
 
     def room_unreadable(self, room_id: str) -> None:
         """A saved room that cannot be restored is dropped, so it is not retried forever."""
@@ -54,6 +61,19 @@ class StoreObserver:
         """The server is going down: stop recording; the saved rooms stay for the restart."""
         self.active = False
 
+    def use_cluster(
+        self,
+        ids: Iterator[int],
+        epoch_of: Callable[[str], int | None],
+        stale: Callable[[str], None],
+    ) -> None:
+        """Cluster mode: match ids from `ids` (unique across the processes sharing the
+        store); `epoch_of(room_id)` is the fencing epoch this process owns a room under,
+        and `stale(room_id)` is told when the store refuses a write for it."""
+        self._ids = ids
+        self._epoch_of = epoch_of
+        self._stale = stale
+
     def match_id(self, room: Room) -> int | None:
         """The record of the room's current match, started when the match starts (and again
         on a rematch)."""
@@ -61,11 +81,13 @@ class StoreObserver:
         if match is None:
             return None
         tracked = self._matches.get(room.room_id)
-        if tracked is None or (tracked.finished and not match.over):
+        if tracked is None or (tracked.finished and not match.over and not room.abandoned):
             tracked = _Tracked(next(self._ids))
             self._matches[room.room_id] = tracked
             args = (tracked.match_id, room.room_id, match.kind, list(match.players), match.race_to)
-            self.db.write(lambda repo: repo.start_match(*args), "start match")
+            self._write(
+                room.room_id, lambda repo, e: repo.start_match(*args, epoch=e), "start match"
+            )
         return tracked.match_id
 
     # ---- RoomObserver -----------------------------------------------------------------
@@ -76,7 +98,9 @@ class StoreObserver:
             return
         match_id = self.match_id(room)
         text = encode(room_to_snapshot(room, match_id, pending_shot(shot_id, seat, shot)))
-        self.db.write(lambda repo: repo.save_room(room.room_id, text), "save room")
+        self._write(
+            room.room_id, lambda repo, e: repo.save_room(room.room_id, text, epoch=e), "save room"
+        )
 
     def shot_played(
         self, room: Room, seat: int, shot: Shot, before: BallSet, outcome: Outcome, plan: ShotPlan
@@ -99,8 +123,11 @@ class StoreObserver:
             outcome.to_dict(),
         )
         engine, motion = ENGINE_VERSION, motion_text(plan)
-        self.db.write(
-            lambda repo: repo.record_shot(*row, engine=engine, motion=motion), "record shot"
+        self._matches[room.room_id].shots += 1
+        self._write(
+            room.room_id,
+            lambda repo, e: repo.record_shot(*row, engine=engine, motion=motion, epoch=e),
+            "record shot",
         )
         self._scored(room, "shot", outcome)
 
@@ -114,7 +141,9 @@ class StoreObserver:
         match_id = self.match_id(room)
         self._finish_if_over(room)
         text = encode(room_to_snapshot(room, match_id))
-        self.db.write(lambda repo: repo.save_room(room.room_id, text), "save room")
+        self._write(
+            room.room_id, lambda repo, e: repo.save_room(room.room_id, text, epoch=e), "save room"
+        )
 
     def room_closed(self, room: Room) -> None:
         """The room expired: forget it; a match left unfinished is marked abandoned."""
@@ -122,21 +151,41 @@ class StoreObserver:
             return
         tracked = self._matches.pop(room.room_id, None)
         room_id = room.room_id
-        self.db.write(lambda repo: repo.delete_room(room_id), "delete room")
+        self._write(room_id, lambda repo, e: repo.delete_room(room_id, epoch=e), "delete room")
         if tracked is not None and not tracked.finished and room.match is not None:
             score = list(room.match.score)
-            self.db.write(
-                lambda repo: repo.finish_match(
+            self._write(
+                room_id,
+                lambda repo, e: repo.finish_match(
                     tracked.match_id,
                     score,
                     None,
                     "The room closed before the end.",
                     status="abandoned",
+                    epoch=e,
                 ),
                 "abandon match",
             )
 
     # ---- helpers ----------------------------------------------------------------------
+
+    def _write(
+        self, room_id: str, fn: Callable[[Repository, int | None], object], what: str
+    ) -> None:
+        """Queue a write about `room_id` carrying the epoch this process owns it under
+        (cluster mode; None otherwise). A refusal (`StaleOwner`: another process owns the
+        room now) is reported to `stale` on the event loop."""
+        epoch = self._epoch_of(room_id)
+        future = self.db.write(lambda repo: fn(repo, epoch), what)
+        if epoch is None:
+            return
+        loop = asyncio.get_running_loop()
+
+        def done(f: Future) -> None:
+            if isinstance(f.exception(), StaleOwner):
+                loop.call_soon_threadsafe(self._stale, room_id)
+
+        future.add_done_callback(done)
 
     def _scored(self, room: Room, cause: str, outcome: Outcome) -> None:
         match = room.match
@@ -152,14 +201,36 @@ class StoreObserver:
                 cause,
                 list(match.score),
             )
-            self.db.write(lambda repo: repo.record_game(*args), "record game")
+            self._write(
+                room.room_id, lambda repo, e: repo.record_game(*args, epoch=e), "record game"
+            )
         self._finish_if_over(room)
 
     def _finish_if_over(self, room: Room) -> None:
+        """Record the end of the match: finished with its winner, or abandoned when every
+        player left, or when it was decided without a single shot (frames forfeited by a
+        player who never played): nobody won such a match and there is nothing to watch."""
         match = room.match
         tracked = self._matches.get(room.room_id)
-        if match is None or tracked is None or tracked.finished or not match.over:
+        if match is None or tracked is None or tracked.finished:
+            return
+        if room.abandoned:
+            reason = "Both players left the table."
+        elif not match.over:
+            return
+        elif tracked.shots == 0:
+            reason = match.reason or "Nobody played a shot."
+        else:
+            tracked.finished = True
+            args = (tracked.match_id, list(match.score), match.winner, match.reason)
+            self._write(
+                room.room_id, lambda repo, e: repo.finish_match(*args, epoch=e), "finish match"
+            )
             return
         tracked.finished = True
-        args = (tracked.match_id, list(match.score), match.winner, match.reason)
-        self.db.write(lambda repo: repo.finish_match(*args), "finish match")
+        abandoned = (tracked.match_id, list(match.score), None, reason)
+        self._write(
+            room.room_id,
+            lambda repo, e: repo.finish_match(*abandoned, status="abandoned", epoch=e),
+            "abandon match",
+        )

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import asyncio
 import logging
+from collections.abc import Callable
 
 from server.config import Settings
 from server.store import RoomSnapshot
@@ -13,7 +14,7 @@ from .clock import SYSTEM_CLOCK, Clock, SeedSource
 from .errors import ActionError
 from .live import LiveRoom
 from .metrics import StreamMetrics
-from .observer import RoomObserver
+from .observer import NullObserver, RoomObserver
 from .room import Room
 from .shot_runner import ShotRunner
 from .snapshot import room_from_snapshot
@@ -45,9 +46,11 @@ class RoomRegistry:
         self._listed: list[LiveRoom] | None = None  # listed rooms, newest first (cached)
         self._stats: dict[float, tuple[float, dict]] = {}  # window -> (loop time, stats)
         self.metrics = StreamMetrics()
-        self.runner = ShotRunner(
-            settings.shot_workers, settings.frame_every, settings.frames_per_message
-        )
+        # Told when a room opens here, and when one closes here for good (cluster mode
+        # registers it with the others, then clears its shared entries).
+        self.on_create: Callable[[LiveRoom], None] | None = None
+        self.on_forget: Callable[[str], None] | None = None
+        self.runner = ShotRunner(settings.shot_workers, settings.frame_every)
 
     def create(
         self,
@@ -93,6 +96,8 @@ class RoomRegistry:
             self._open_by[owner] = self._open_by.get(owner, 0) + 1
         if self.observer is not None:
             self.observer.room_changed(room)
+        if self.on_create is not None:
+            self.on_create(live)
         return live
 
     def restore(self, snapshots: list[RoomSnapshot]) -> list[LiveRoom]:
@@ -148,6 +153,23 @@ class RoomRegistry:
                 self._open_by[owner] = left
             else:
                 self._open_by.pop(owner, None)
+        if live is not None and self.on_forget is not None:
+            self.on_forget(room_id)
+        return live
+
+    def release(self, room_id: str, code: int, reason: str) -> LiveRoom | None:
+        """Stop playing a room that another process plays now (or will): its members are
+        closed with `code`, and the store is not told it closed (it lives on elsewhere)."""
+        live = self.rooms.get(room_id)
+        if live is None:
+            return None
+        hook, self.on_forget = self.on_forget, None
+        try:
+            self.forget(room_id)
+        finally:
+            self.on_forget = hook
+        live.observer = NullObserver()
+        live.close(code, reason)
         return live
 
     def sweep(self, now: float | None = None) -> list[str]:

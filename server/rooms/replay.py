@@ -1,7 +1,8 @@
-"""Replay a stored shot: stream what was shown live, paced like the live stream.
+"""Replay a stored shot: the `motion` message that was shown live, then its result.
 
-A shot stored with its motion replays exactly those messages, whatever engine is installed
-now. An older row without motion is simulated again, but only by the engine version that
+A shot stored with its motion replays exactly that, whatever engine is installed now (a
+shot stored as `frame` and `event` messages, before the `motion` message, is converted).
+An older row without motion is simulated again, but only by the engine version that
 played it (the engine is deterministic and the stored floats exact, so that gives the
 original bit for bit); a newer engine refuses rather than show a different shot.
 """
@@ -9,13 +10,15 @@ original bit for bit); a newer engine refuses rather than show a different shot.
 from __future__ import annotations
 
 import asyncio
+import base64
 from collections.abc import AsyncIterator
 
 from server.codec import from_data
 from server.engine import ENGINE_VERSION, BallSet, Shot, ShotResult, Table, simulate
-from server.protocol import message_text, plan_shot
-from server.protocol.outbound import ReplayRef, ReplayResultMessage, text
-from server.protocol.plan import motion_messages
+from server.protocol import plan_shot, trace
+from server.protocol.motion import HEADER, TIME_UNIT, with_seq
+from server.protocol.outbound import MotionMessage, ReplayRef, ReplayResultMessage, text
+from server.protocol.plan import stored_motion
 from server.rules import Outcome
 from server.store import MatchRecord, ShotRecord
 
@@ -36,19 +39,20 @@ def resimulate(record: ShotRecord) -> ShotResult:
     )
 
 
-def replay_motion(
-    record: ShotRecord, frame_every: int, frames_per_message: int = 1
-) -> list[tuple[float, str, str]]:
-    """The `frame` and `event` messages of the shot as (at, kind, body), as shown live."""
+def replay_motion(record: ShotRecord, frame_every: int) -> bytes:
+    """The shot's `motion` message, as shown live."""
     if record.motion is not None:
-        return motion_messages(record.motion)
+        return stored_motion(record.motion, record.room_shot)
     if (record.engine or FIRST_RECORDED_ENGINE) != ENGINE_VERSION:
         raise EngineChanged(
             f"shot {record.n} was played by engine {record.engine}; this "
             f"server runs {ENGINE_VERSION}"
         )
-    plan = plan_shot(resimulate(record), record.room_shot, frame_every, frames_per_message)
-    return [(timed.at, timed.kind, timed.body) for timed in plan]
+    table = from_data(Table, record.table)
+    balls = BallSet.from_dict(record.balls)
+    shot = from_data(Shot, record.shot)
+    result = simulate(table, balls, shot)
+    return plan_shot(result, trace(table, balls, shot), record.room_shot, frame_every).motion
 
 
 def result_message(record: ShotRecord, match: MatchRecord, seq: int) -> ReplayResultMessage:
@@ -61,17 +65,17 @@ def result_message(record: ShotRecord, match: MatchRecord, seq: int) -> ReplayRe
     )
 
 
+def duration_of(motion: bytes) -> float:
+    """Seconds from the strike to the last tick, from the message's header."""
+    return HEADER.unpack_from(motion)[4] * TIME_UNIT
+
+
 async def stream_replay(
-    messages: list[tuple[float, str, str]], record: ShotRecord, match: MatchRecord, pace: float
+    motion: bytes, record: ShotRecord, match: MatchRecord, pace: float
 ) -> AsyncIterator[str]:
-    """NDJSON lines paced like the live stream (`pace` 2.0 plays twice as fast)."""
-    loop = asyncio.get_running_loop()
-    start = loop.time()
-    seq = 0
-    for at, kind, body in messages:
-        delay = start + at / pace - loop.time()
-        if delay > 0:
-            await asyncio.sleep(delay)
-        seq += 1
-        yield message_text(kind, seq, body) + "\n"
-    yield text(result_message(record, match, seq + 1)) + "\n"
+    """NDJSON: the `motion` message at once (base64), then, when the shot has been played
+    (`pace` 2: twice as fast), its `shot_result`."""
+    data = base64.b64encode(with_seq(motion, 1)).decode("ascii")
+    yield text(MotionMessage(seq=1, shot=record.room_shot, data=data)) + "\n"
+    await asyncio.sleep(duration_of(motion) / pace)
+    yield text(result_message(record, match, 2)) + "\n"

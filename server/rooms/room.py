@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import functools
 import secrets
+from collections import deque
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -19,6 +20,8 @@ from server.engine import BallSet, Shot, ShotResult, Table
 from server.protocol import BallRow, StreamFrames, Timed, frame_rows
 from server.protocol.limits import MAX_NAME
 from server.protocol.outbound import (
+    ChatLine,
+    ChatMessage,
     ClockInfo,
     GraceInfo,
     PlayerInfo,
@@ -36,6 +39,8 @@ WAITING: Phase = "waiting"
 AIMING: Phase = "aiming"
 ROLLING: Phase = "rolling"
 OVER: Phase = "over"
+CHAT_KEPT = 50  # chat lines a (re)connecting member is shown
+FIRST_BREAK_FACTOR = 4.0  # the room's first break: this many shot clocks to play it
 
 
 @functools.lru_cache(maxsize=8)
@@ -55,6 +60,7 @@ class Seat:
     name: str
     token_hash: str
     connected: bool = False
+    seen: bool = False  # connected at least once (a player who leaves has been here)
 
 
 @dataclass
@@ -97,6 +103,9 @@ class Room:
     shots_played: int = field(default=0, init=False)
     rematch_votes: set[int] = field(default_factory=set, init=False)
     spectators: int = field(default=0, init=False)
+    # Both players left and none came back: the match stopped, nobody won it.
+    abandoned: bool = field(default=False, init=False)
+    chat: deque[ChatLine] = field(default_factory=lambda: deque(maxlen=CHAT_KEPT), init=False)
 
     def __post_init__(self) -> None:
         if self.game not in GAME_KINDS:
@@ -112,8 +121,10 @@ class Room:
     def practice(self) -> bool:
         return self.game == "practice"
 
-    def join(self, name: str) -> tuple[int, str]:
-        """Take the first free seat; returns (seat, token). Starts the match when full."""
+    def join(self, name: str, token: str | None = None) -> tuple[int, str]:
+        """Take the first free seat; returns (seat, token). Starts the match when full.
+        `token`: the seat's token when the caller made it (a player's own, see
+        `server.players.seat_token`); else a new random one."""
         clean = name.strip()
         if not 1 <= len(clean) <= MAX_NAME or not clean.isprintable():
             raise ActionError("bad_name", f"A name is 1 to {MAX_NAME} printable characters.")
@@ -125,7 +136,7 @@ class Room:
                 if len(self.seats) == 2
                 else "This practice table has one seat and it is taken.",
             )
-        token = new_token()
+        token = token or new_token()
         self.seats[free] = Seat(clean, hash_token(token))
         self._start_when_full()
         return free, token
@@ -179,7 +190,7 @@ class Room:
             return WAITING
         if self.shot is not None:
             return ROLLING
-        if self.match.over:
+        if self.match.over or self.abandoned:
             return OVER
         return AIMING
 
@@ -246,10 +257,34 @@ class Room:
             players=self.players_info(),
             spectators=self.spectators,
             rematch=sorted(self.rematch_votes),
+            abandoned=self.abandoned,
         )
 
-    def state_message(self, clock: ClockInfo | None, grace: list[GraceInfo]) -> StateMessage:
-        """The `state` message (its `seq` set by the sender)."""
+    def say(self, seat: int | None, text: str, at: float) -> ChatMessage:
+        """A chat line: kept for members who connect later, returned to be broadcast."""
+        name = self.name_of(seat)
+        self.chat.append(ChatLine(seat=seat, name=name, text=text, at=at))
+        return ChatMessage(seat=seat, name=name, text=text, at=at)
+
+    def clock_limit(self) -> float:
+        """Seconds on the shot clock for the seat to act now: the room's first break gets
+        `FIRST_BREAK_FACTOR` times as long, so a newcomer reading the table (and the hint)
+        for the first time does not lose the break to a clock that started when the
+        opponent sat down."""
+        match = self.match
+        first_break = match is not None and match.game.breaking and self.shots_played == 0
+        return self.shot_clock * (FIRST_BREAK_FACTOR if first_break else 1.0)
+
+    def abandon(self) -> None:
+        """Nobody came back: the match stops where it is, without a winner."""
+        self.abandoned = True
+        self.rematch_votes.clear()
+
+    def state_message(
+        self, clock: ClockInfo | None, grace: list[GraceInfo], chat: bool = False
+    ) -> StateMessage:
+        """The `state` message (its `seq` set by the sender); with `chat`, the last lines
+        of the chat (for a member who just connected or asked for a `sync`)."""
         shot = self.shot
         match_state: dict[str, Any] | None
         if shot is not None:
@@ -269,6 +304,7 @@ class Room:
             clock=clock,
             grace=grace,
             match=match_state,
+            chat=list(self.chat) if chat else None,
         )
 
     # ---- actions ----------------------------------------------------------------------
@@ -280,6 +316,8 @@ class Room:
             raise ActionError("not_started", "Waiting for the other player to join.")
         if self.shot is not None:
             raise ActionError("balls_moving", "Wait until the balls stop.")
+        if self.abandoned:
+            raise ActionError("abandoned", "Both players left; this match was abandoned.")
         if self.match.over:
             raise ActionError("match_over", "The match is over; ask for a rematch.")
         return self.match, seat
@@ -385,6 +423,8 @@ class Room:
         """Record a rematch request; True when every seat asked and a new match began."""
         if seat is None:
             raise ActionError("spectator", "Spectators can watch and chat, not play.")
+        if self.abandoned:
+            raise ActionError("abandoned", "This match was abandoned; open a new table.")
         if self.match is None or not self.match.over:
             raise ActionError("match_not_over", "A rematch can start once the match is over.")
         self.rematch_votes.add(seat)

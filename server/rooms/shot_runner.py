@@ -1,11 +1,14 @@
 """Where shots are simulated: in threads of this process, or in worker processes.
 
-Threads (the default) run only the compiled tick loop (`ShotInMotion.run`, one call that
-releases the GIL); the Python before and after it (the strike, turning the kernel's arrays
-into events, planning the messages: ~1 ms) runs on the event loop. A thread that ran all of
-`prepare_shot` had to win the GIL back from the busy loop after every compiled or numpy
-call, and while it held it the loop waited in turn: under load (100+ rooms) a 4 ms shot took
-0.3-2 s to start and every room's stream stalled (docs/performance.md).
+Threads (the default) run only compiled code that releases the GIL, one call a shot: the
+engine's ticks and, in the same pass, the shot's exact motion for the `motion` message
+(`protocol.motion.run_traced`: each tick with contacts replayed up to them, then thinned
+and packed). The Python before and after (the strike, turning the kernel's arrays into
+events, the sounds and the message's header: well under 1 ms) runs on the event loop. A
+thread that ran all of `prepare_shot` had to win the GIL back from the busy loop after
+every compiled or numpy call, and while it held it the loop waited in turn: under load
+(100+ rooms) a 4 ms shot took 0.3-2 s to start and every room's stream stalled
+(docs/performance.md).
 
 A worker process (`POOL_SHOT_WORKERS=1`) has its own interpreter and the loop only
 unpickles the result (~1 ms), but on this 2-core machine, shared with the benchmark's
@@ -18,22 +21,24 @@ from __future__ import annotations
 import asyncio
 import logging
 import multiprocessing
+import sys
 from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 
 from server.engine import BallSet, Shot, ShotInMotion, ShotResult, Table
+from server.protocol import run_traced
 from server.protocol.plan import ShotPlan, plan_shot
 
 from .prepare import prepare_shot, warm_up
 
 log = logging.getLogger(__name__)
+SWITCH_INTERVAL = 0.001  # s: how soon a busy thread yields the GIL to a waiting one
 
 
 class ShotRunner:
-    def __init__(self, workers: int, frame_every: int, frames_per_message: int) -> None:
+    def __init__(self, workers: int, frame_every: int) -> None:
         self.workers = workers
         self.frame_every = frame_every
-        self.frames_per_message = frames_per_message
         self._pool: ProcessPoolExecutor | None = None
         self._thread_pool: ThreadPoolExecutor | None = None
 
@@ -46,7 +51,13 @@ class ShotRunner:
 
     async def start(self) -> None:
         """Start the worker processes and load the engine in them (then the first shot is
-        as fast as any); without workers, load it in this process."""
+        as fast as any); without workers, load it in this process.
+
+        A shot thread takes the GIL back after each compiled call; while the loop is busy
+        (thousands of sockets) each hand-over waited up to the interpreter's switch interval,
+        5 ms, and at 1,000 rooms the threads spent their time waiting, not simulating
+        (docs/performance.md). 1 ms makes the loop hand it over sooner."""
+        sys.setswitchinterval(SWITCH_INTERVAL)
         loop = asyncio.get_running_loop()
         if self.workers > 0:
             self._pool = ProcessPoolExecutor(
@@ -64,7 +75,7 @@ class ShotRunner:
     async def prepare(
         self, table: Table, before: BallSet, shot: Shot, shot_id: int
     ) -> tuple[ShotResult, ShotPlan]:
-        args = (table, before, shot, shot_id, self.frame_every, self.frames_per_message)
+        args = (table, before, shot, shot_id, self.frame_every)
         if self._pool is not None:
             try:
                 return await asyncio.get_running_loop().run_in_executor(
@@ -74,9 +85,11 @@ class ShotRunner:
                 log.error("the shot worker process died; simulating in threads from now on")
                 self._pool = None
         motion = ShotInMotion(table, before, shot)
-        await asyncio.get_running_loop().run_in_executor(self._threads, motion.run)
+        tracks = await asyncio.get_running_loop().run_in_executor(
+            self._threads, run_traced, table, motion
+        )
         result = motion.result()
-        return result, plan_shot(result, shot_id, self.frame_every, self.frames_per_message)
+        return result, plan_shot(result, tracks, shot_id, self.frame_every)
 
     def close(self) -> None:
         """Stop the workers and wait for them (a worker left running outlives the server)."""

@@ -1,76 +1,153 @@
-"""The schema as numbered migrations; `PRAGMA user_version` says how many have run.
+"""The schema as it is now (SQLAlchemy Core tables), for the queries and the schema test.
 
-Add a migration at the end to change the schema; never edit one that has shipped.
-JSON columns hold floats as Python writes them (`repr`), which read back bit for bit.
+It changes only through a migration in `migrations/versions/` (Alembic, one set for SQLite
+and PostgreSQL); `tests/store` checks the migrated database matches these tables. JSON
+columns hold text written by `server.codec.encode`: floats as Python writes them (`repr`),
+which read back bit for bit on both backends. Times are float8 (`Double`), exact too.
 """
 
 from __future__ import annotations
 
-import sqlite3
-
-MIGRATIONS: tuple[str, ...] = (
-    """
-    CREATE TABLE matches (
-        id          INTEGER PRIMARY KEY,
-        room_id     TEXT    NOT NULL,
-        kind        TEXT    NOT NULL,
-        players     TEXT    NOT NULL,              -- JSON list of names, seat order
-        race_to     INTEGER NOT NULL,
-        status      TEXT    NOT NULL,              -- playing | finished | abandoned
-        score       TEXT    NOT NULL,              -- JSON list, games won per seat
-        winner      INTEGER,                       -- seat
-        reason      TEXT,
-        started_at  REAL    NOT NULL,
-        finished_at REAL
-    );
-    CREATE INDEX matches_recent ON matches (started_at DESC, id DESC);
-    CREATE INDEX matches_room ON matches (room_id);
-
-    CREATE TABLE games (                           -- players call a game a frame
-        match_id    INTEGER NOT NULL REFERENCES matches (id),
-        n           INTEGER NOT NULL,              -- 1, 2, ... within the match
-        winner      INTEGER,
-        reason      TEXT,
-        cause       TEXT    NOT NULL,              -- shot | timeout | concede | forfeit
-        score       TEXT    NOT NULL,              -- JSON, after this game
-        finished_at REAL    NOT NULL,
-        PRIMARY KEY (match_id, n)
-    );
-
-    CREATE TABLE shots (
-        match_id    INTEGER NOT NULL REFERENCES matches (id),
-        n           INTEGER NOT NULL,              -- 1, 2, ... within the match
-        room_shot   INTEGER NOT NULL,              -- the room's shot id (live `shot` field)
-        game        INTEGER NOT NULL,              -- game number within the match
-        seat        INTEGER NOT NULL,
-        shot        TEXT    NOT NULL,              -- JSON {angle, speed, tip}
-        table_geom  TEXT    NOT NULL,              -- JSON Table constructor arguments
-        balls       TEXT    NOT NULL,              -- JSON BallSet.to_dict() before the shot
-        outcome     TEXT    NOT NULL,              -- JSON Outcome.to_dict()
-        played_at   REAL    NOT NULL,
-        PRIMARY KEY (match_id, n),
-        UNIQUE (match_id, room_shot)
-    );
-
-    CREATE TABLE rooms (                           -- live rooms, for restart recovery
-        room_id     TEXT    PRIMARY KEY,
-        snapshot    TEXT    NOT NULL,              -- JSON, see server/rooms/snapshot.py
-        updated_at  REAL    NOT NULL
-    );
-    """,
-    """
-    -- which engine played each shot, and the motion every member was shown (zlib of
-    -- protocol.plan.motion_text): a replay shows that, not a re-simulation by a newer
-    -- engine. Older rows have neither.
-    ALTER TABLE shots ADD COLUMN engine TEXT;
-    ALTER TABLE shots ADD COLUMN motion BLOB;
-    """,
+from sqlalchemy import (
+    BigInteger,
+    Column,
+    Double,
+    ForeignKey,
+    Index,
+    Integer,
+    LargeBinary,
+    MetaData,
+    PrimaryKeyConstraint,
+    Table,
+    Text,
+    UniqueConstraint,
 )
 
+metadata = MetaData()
 
-def migrate(conn: sqlite3.Connection) -> int:
-    """Run the migrations this database has not seen yet; returns the schema version."""
-    version = conn.execute("PRAGMA user_version").fetchone()[0]
-    for number, script in enumerate(MIGRATIONS[version:], start=version + 1):
-        conn.executescript(f"BEGIN;\n{script}\nPRAGMA user_version = {number};\nCOMMIT;")
-    return len(MIGRATIONS)
+matches = Table(
+    "matches",
+    metadata,
+    Column("id", Integer, primary_key=True, autoincrement=False),
+    Column("room_id", Text, nullable=False),
+    Column("kind", Text, nullable=False),
+    Column("players", Text, nullable=False),  # JSON list of names, seat order
+    Column("race_to", Integer, nullable=False),
+    Column("status", Text, nullable=False),  # playing | finished | abandoned
+    Column("score", Text, nullable=False),  # JSON list, games won per seat
+    Column("winner", Integer),  # seat
+    Column("reason", Text),
+    Column("started_at", Double, nullable=False),
+    Column("finished_at", Double),
+    Index("matches_recent", "started_at", "id"),
+    Index("matches_room", "room_id"),
+)
+
+games = Table(  # players call a game a frame
+    "games",
+    metadata,
+    Column("match_id", Integer, ForeignKey("matches.id"), nullable=False),
+    Column("n", Integer, nullable=False),  # 1, 2, ... within the match
+    Column("winner", Integer),
+    Column("reason", Text),
+    Column("cause", Text, nullable=False),  # shot | timeout | concede | forfeit
+    Column("score", Text, nullable=False),  # JSON, after this game
+    Column("finished_at", Double, nullable=False),
+    PrimaryKeyConstraint("match_id", "n"),
+)
+
+shots = Table(
+    "shots",
+    metadata,
+    Column("match_id", Integer, ForeignKey("matches.id"), nullable=False),
+    Column("n", Integer, nullable=False),  # 1, 2, ... within the match
+    Column("room_shot", Integer, nullable=False),  # the room's shot id (live `shot` field)
+    Column("game", Integer, nullable=False),  # game number within the match
+    Column("seat", Integer, nullable=False),
+    Column("shot", Text, nullable=False),  # JSON {angle, speed, tip}
+    Column("table_geom", Text, nullable=False),  # JSON Table constructor arguments
+    Column("balls", Text, nullable=False),  # JSON BallSet.to_dict() before the shot
+    Column("outcome", Text, nullable=False),  # JSON Outcome.to_dict()
+    Column("played_at", Double, nullable=False),
+    Column("engine", Text),  # ENGINE_VERSION that played it (older rows: none)
+    Column("motion", LargeBinary),  # zlib of protocol.plan.motion_text (bytea on PostgreSQL)
+    PrimaryKeyConstraint("match_id", "n"),
+    UniqueConstraint("match_id", "room_shot", name="shots_room_shot"),
+)
+
+rooms = Table(  # live rooms, for restart recovery and failover
+    "rooms",
+    metadata,
+    Column("room_id", Text, primary_key=True),
+    Column("snapshot", Text, nullable=False),  # JSON, see server/rooms/snapshot.py
+    Column("updated_at", Double, nullable=False),
+)
+
+room_owners = Table(  # fencing: the highest ownership epoch each room has seen
+    "room_owners",
+    metadata,
+    Column("room_id", Text, primary_key=True),
+    Column("epoch", BigInteger, nullable=False),
+    Column("owner", Text, nullable=False),  # who claimed it (a process address), for people
+    Column("claimed_at", Double, nullable=False),
+)
+
+counters = Table(  # ids handed out in blocks to several processes (`reserve_match_ids`)
+    "counters",
+    metadata,
+    Column("name", Text, primary_key=True),
+    Column("value", BigInteger, nullable=False),
+)
+
+players = Table(  # profiles without passwords (server.players)
+    "players",
+    metadata,
+    Column("id", Text, primary_key=True),
+    Column("name", Text, nullable=False),
+    Column("secret_hash", Text, nullable=False, unique=True),  # SHA-256 of the cookie
+    Column("created_at", Double, nullable=False),
+)
+
+player_ratings = Table(  # Glicko-2, one row per player and game kind
+    "player_ratings",
+    metadata,
+    Column("player_id", Text, ForeignKey("players.id"), nullable=False),
+    Column("kind", Text, nullable=False),
+    Column("rating", Double, nullable=False),
+    Column("rd", Double, nullable=False),
+    Column("volatility", Double, nullable=False),
+    Column("games", Integer, nullable=False),
+    Column("wins", Integer, nullable=False),
+    Column("rated_at", Double),
+    PrimaryKeyConstraint("player_id", "kind"),
+    Index("player_ratings_kind", "kind", "rating"),
+)
+
+ranked_rooms = Table(  # Play now rooms: who sat where, and the rated result
+    "ranked_rooms",
+    metadata,
+    Column("room_id", Text, primary_key=True),
+    Column("kind", Text, nullable=False),
+    Column("player0", Text, ForeignKey("players.id"), nullable=False),
+    Column("player1", Text, ForeignKey("players.id"), nullable=False),
+    Column("names", Text, nullable=False),  # JSON, seat order, as seated
+    Column("started_at", Double, nullable=False),
+    Column("match_id", Integer),
+    Column("winner", Integer),  # seat
+    Column("before", Text),  # JSON [[rating, rd, volatility], ...] seat order
+    Column("after", Text),
+    Column("finished_at", Double),
+    Index("ranked_rooms_player0", "player0", "finished_at"),
+    Index("ranked_rooms_player1", "player1", "finished_at"),
+)
+
+player_seats = Table(  # the seats players with a profile took: their matches on the profile
+    "player_seats",
+    metadata,
+    Column("player_id", Text, ForeignKey("players.id"), nullable=False),
+    Column("room_id", Text, nullable=False),
+    Column("seat", Integer, nullable=False),
+    Column("joined_at", Double, nullable=False),
+    PrimaryKeyConstraint("player_id", "room_id"),
+    Index("player_seats_room", "room_id"),
+)

@@ -217,3 +217,33 @@ def test_full_game_against_itself_ends_legally(kind: str) -> None:
         play_turn(game, seat, turn, bots[seat], rng)  # every action goes through the rules
     assert game.over and game.winner in (0, 1) and game.reason
     assert game.balls.on_table[game.balls.index(CUE)] or game.over
+
+
+def test_side_spin_pots_aim_against_their_squirt(eight: Game) -> None:
+    """Every stroke tried on an easy straight-in (but the softest, which may die short),
+    side spin included, pockets it without noise: the cue is turned so that the squirted
+    cue ball still travels the ghost-ball line."""
+    obj, cue = straight_line(3, 0.5, 0.8)
+    game = set_table(eight, {0: cue, 1: obj, 9: (0.4, 0.3), 8: (0.5, 1.0)}, groups=SOLIDS_STRIPES)
+    search = Bot(Bot.LEVELS[-1])._search(game, 0)
+    strokes = [c for c in search.pot_candidates(game.balls, 1) if (c.target, c.pocket) == (1, 3)]
+    softest = min(c.shot.speed for c in strokes)
+    strokes = [c for c in strokes if c.shot.speed > softest]
+    assert any(c.shot.tip[0] != 0.0 for c in strokes)
+    for cand in strokes:
+        result = simulate(TABLE, game.balls, cand.shot)
+        assert 1 in shot_facts(game.balls, result).pocketed, cand.shot
+
+
+def test_a_plan_never_runs_more_simulations_than_its_budget(eight: Game) -> None:
+    wall = {9 + k: (1.0, 0.635 + (k - 3) * (2 * R + 0.002)) for k in range(7)}
+    snookered = set_table(
+        Game.from_dict(eight.to_dict()),
+        {0: (0.6, 0.635), 1: (2.0, 0.635), 8: (2.3, 1.1), **wall},
+        groups=SOLIDS_STRIPES,
+    )
+    for game in [*_states(eight), snookered]:
+        for level in Bot.LEVELS:
+            bot = Bot(level, seed=1)
+            bot.plan(game, game.turn)
+            assert 0 < bot.last_sims <= bot.level.budget, (level, bot.last_sims)

@@ -3,14 +3,22 @@ shows its cue moving, and plays its turns through the same room actions as a per
 
 from __future__ import annotations
 
+import asyncio
+import json
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 from fastapi.testclient import TestClient
+from starlette.testclient import WebSocketTestSession
 
+from server.ai import Bot, play_turn
 from server.app import create_app
+from server.codec import to_data
 from server.rooms import SeedSource
+from server.rooms.computer import plan_turn
+from server.rules import Game
 from tests.support.games import BREAK_MESSAGE, EIGHT_BALL
 from tests.support.settings import settings_in
 
@@ -24,6 +32,16 @@ def client(tmp_path: Path) -> Iterator[TestClient]:
         yield c
 
 
+def next_json(ws: WebSocketTestSession) -> dict[str, Any]:
+    """The next JSON message (frames may come as binary messages: skipped here)."""
+    while True:
+        message = ws.receive()
+        if message.get("text") is not None:
+            return json.loads(message["text"])
+        if message["type"] == "websocket.close":
+            raise AssertionError(f"closed: {message}")
+
+
 def test_the_computer_takes_the_second_seat_and_plays_its_turn(client: TestClient):
     created = client.post(
         "/api/rooms", json={"game": "eight_ball", "opponent": "club", "listed": False}
@@ -35,13 +53,13 @@ def test_the_computer_takes_the_second_seat_and_plays_its_turn(client: TestClien
     room = client.get(f"/api/rooms/{room_id}").json()
     assert room["players"] == ["Ana", "Computer (club)"] and room["status"] == "playing"
     with client.websocket_connect(f"/ws/rooms/{room_id}?token={ana['token']}") as ws:
-        while ws.receive_json()["type"] != "presence":
+        while next_json(ws)["type"] != "presence":
             pass
         ws.send_json(BREAK_MESSAGE)  # the rack's break: legal, then a miss hands over
         results = []
         aims = 0
         while len(results) < 3:
-            message = ws.receive_json()
+            message = next_json(ws)
             aims += message["type"] == "aim" and message["seat"] == 1
             if message["type"] == "shot_result":
                 results.append(message)
@@ -61,3 +79,55 @@ def test_the_computer_is_only_for_real_games_at_known_levels(client: TestClient)
     bad_level = client.post("/api/rooms", json={"game": "eight_ball", "opponent": "god"})
     practice = client.post("/api/rooms", json={"game": "practice", "opponent": "pro"})
     assert bad_level.status_code == 422 and practice.status_code == 422
+
+
+def test_a_hint_shows_the_strongest_plan_without_playing_it(client: TestClient):
+    room_id = client.post("/api/rooms", json={"game": "practice", "listed": False}).json()[
+        "room_id"
+    ]
+    ana = client.post(f"/api/rooms/{room_id}/join", json={"name": "Ana"}).json()
+    before = client.get(f"/api/rooms/{room_id}").json()["state"]
+    reply = client.post(f"/api/rooms/{room_id}/hint", json={"token": ana["token"]})
+    assert reply.status_code == 200, reply.text
+    hint = reply.json()
+    assert hint["level"] == "pro" and hint["kind"] in ("pot", "safety", "kick")
+    assert hint["place"] is not None and 0 < hint["speed"] <= 12.0  # ball in hand in practice
+    assert len(hint["tip"]) == 2
+    # Nothing was played: the table and the turn are as they were.
+    assert client.get(f"/api/rooms/{room_id}").json()["state"] == before
+    # The plan is one the room accepts: place the cue ball there and play it.
+    with client.websocket_connect(f"/ws/rooms/{room_id}?token={ana['token']}") as ws:
+        x, y = hint["place"]
+        ws.send_json({"type": "place_cue", "x": x, "y": y})
+        ws.send_json(
+            {"type": "shoot", "angle": hint["angle"], "speed": hint["speed"], "tip": hint["tip"]}
+        )
+        while (message := next_json(ws))["type"] != "shot_result":
+            assert message["type"] != "error", message
+    assert message["outcome"]["shooter"] == 0
+
+
+def test_a_hint_is_for_the_player_of_a_practice_table(client: TestClient):
+    practice = client.post("/api/rooms", json={"game": "practice", "listed": False}).json()
+    client.post(f"/api/rooms/{practice['room_id']}/join", json={"name": "Ana"})
+    wrong = client.post(f"/api/rooms/{practice['room_id']}/hint", json={"token": "nope"})
+    assert wrong.status_code == 403 and wrong.json()["detail"]["code"] == "bad_token"
+    game = client.post("/api/rooms", json={"game": "eight_ball", "listed": False}).json()
+    bea = client.post(f"/api/rooms/{game['room_id']}/join", json={"name": "Bea"}).json()
+    refused = client.post(f"/api/rooms/{game['room_id']}/hint", json={"token": bea["token"]})
+    assert refused.status_code == 409 and refused.json()["detail"]["code"] == "not_practice"
+    missing = client.post("/api/rooms/nosuchroom/hint", json={"token": bea["token"]})
+    assert missing.status_code == 404
+
+
+@pytest.mark.parametrize("workers", [0, 1])
+def test_the_room_planner_plans_what_the_bot_plans_in_place(workers: int):
+    """A planner process (or thread) gets the game's data and returns the very turn the bot
+    plans on the game itself: the position, the level and the seed decide it."""
+    game = Game.new("eight_ball", ["ana", "computer"], seed=5)
+    bot = Bot("club", seed=9)
+    play_turn(game, game.turn, bot.plan(game, game.turn))  # the break
+    seat = game.decision.seat if game.decision else game.turn
+    here = bot.plan(game, seat)
+    there = asyncio.run(plan_turn("club", 9, to_data(game), seat, workers))
+    assert there == here

@@ -31,17 +31,20 @@ def test_create_room_returns_short_unguessable_id(client):
     assert response.status_code == 201
     body = response.json()
     assert re.fullmatch(r"[A-Za-z0-9_-]{12}", body["room_id"])
-    assert body | {"room_id": "x", "url": "x"} == {
+    assert body | {"room_id": "x", "url": "x", "ws_url": "x"} == {
         "room_id": "x",
         "url": "x",
+        "ws_url": "x",
         "game": "nine_ball",
         "race_to": 5,
         "shot_clock": 30.0,
         "seats": 2,
         "listed": True,
         "opponent": None,
+        "ranked": False,
     }
     assert body["url"] == f"/r/{body['room_id']}"
+    assert body["ws_url"] == f"ws://testserver/ws/rooms/{body['room_id']}"
     assert create_room(client) != create_room(client)
 
 
@@ -103,6 +106,7 @@ def test_list_rooms_shows_game_status_players_and_spectators(settings):
         "spectators": 0,
         "score": [0],
         "created_at": 1_767_000_001.5,
+        "ranked": False,
     }
     assert rooms[full]["status"] == "playing"
     assert rooms[full]["players"] == ["Ana", "Ben"]
@@ -193,11 +197,12 @@ def test_stats_report_rooms_connections_and_frame_lateness(settings):
         with connect(client, room_id, ta) as a:
             greet(a)
             a.send_json(BREAK_MESSAGE)
-            frames = [m for m in receive_until(a, "state") if m["type"] == "frame"]
+            motions = [m for m in receive_until(a, "state") if m["type"] == "motion"]
             stats = client.get("/api/stats", params={"window": 60}).json()
         assert stats["rooms"] == 1 and stats["connections"] == 1
         stream = stats["stream"]
-        assert stream["frames"] == stream["frames_sent"] == len(frames)
+        # One `motion` message a shot, the whole shot in it.
+        assert stream["frames"] == stream["frames_sent"] == len(motions) == 1
         assert 0 <= stream["late_p50_ms"] <= stream["late_p99_ms"] <= stream["late_max_ms"]
         assert stream["shots"] == 1 and 0 < stream["start_p50_ms"] == stream["start_p99_ms"]
         assert client.get("/api/stats", params={"window": 0}).status_code == 422

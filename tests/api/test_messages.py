@@ -112,8 +112,10 @@ def test_every_server_message_and_replay_line_matches_its_model(settings) -> Non
         assert reply.headers["content-type"].startswith("application/x-ndjson")
         lines = [json.loads(line) for line in reply.text.splitlines()]
 
-    models = [server_messages.validate_python(m) for m in seen]
-    for message, model in zip(seen, models, strict=True):
+    assert of_type(seen, "motion")  # binary, checked byte by byte in test_motion_codec
+    texts = [m for m in seen if m["type"] != "motion"]
+    models = [server_messages.validate_python(m) for m in texts]
+    for message, model in zip(texts, models, strict=True):
         assert model.type == message["type"]
     assert {type(m) for m in models} == members(AnyServerMessage)
     assert {m["cause"] for m in of_type(seen, "shot_result")} == {

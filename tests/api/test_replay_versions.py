@@ -3,40 +3,43 @@ with the engine version that played it and the motion every member was shown."""
 
 from __future__ import annotations
 
+import base64
 import json
+import zlib
 
 import pytest
 from fastapi.testclient import TestClient
 
 from server.engine import ENGINE_VERSION
+from server.protocol.motion import decode_motion
 from tests.support.games import BREAK_MESSAGE
-from tests.support.messages import greet, is_subsequence, of_type, receive_until, shot_payload
+from tests.support.messages import assert_valid, greet, receive_until, shot_payload
 from tests.support.rooms import connect, seated_room
 
 pytestmark = pytest.mark.timeout(120)
 
 
-def live_break(client: TestClient) -> list[dict]:
-    """A break in a new 8-ball room, as its spectator saw it: frames and events."""
+def live_break(client: TestClient) -> dict:
+    """A break in a new 8-ball room: the `motion` message its spectator got (decoded)."""
     room_id, token, _ = seated_room(client)
     with connect(client, room_id) as watcher, connect(client, room_id, token) as ana:
         greet(watcher)
         greet(ana)
         ana.send_json(BREAK_MESSAGE)
         stream = receive_until(watcher, "shot_result")
-    return [shot_payload(m) for m in stream if m["type"] in ("frame", "event")]
+    (motion,) = [m for m in stream if m["type"] == "motion"]
+    return motion
 
 
-def assert_replays(lines: list[dict], live: list[dict]) -> None:
-    """The replay (`lines`, its `shot_result` last) is the stream the room planned: every
-    event and the last frame as shown live, and every frame shown live, in order (a room
-    running late skips stale frames live; the replay never does)."""
-    replayed = [shot_payload(m) for m in lines[:-1]]
-    assert is_subsequence(live, replayed)
-    assert of_type(replayed, "event") == of_type(live, "event")
-    assert replayed[-1] == live[-1] and live[-1]["last"]
-    frames = of_type(replayed, "frame")
-    assert [f["tick"] for f in frames] == sorted({f["tick"] for f in frames})
+def assert_replays(lines: list[dict], live: dict) -> None:
+    """The replay (`lines`: the `motion` line, then `shot_result`) carries the very motion
+    shown live (the bytes in base64; only the sequence number is the replay's own)."""
+    assert [m["type"] for m in lines] == ["motion", "shot_result"]
+    assert_valid(lines, replay=True)
+    replayed = decode_motion(base64.b64decode(lines[0]["data"]))
+    assert replayed["seq"] == lines[0]["seq"] == 1
+    assert shot_payload(replayed) == shot_payload(live)
+    assert lines[0]["shot"] == live["shot"]
 
 
 def replay(client: TestClient, match_id: int = 1, n: int = 1) -> tuple[int, list[dict]]:
@@ -96,3 +99,38 @@ def test_rows_from_before_engine_versions_belong_to_the_first_recorded_engine(cl
     # The physics changed since: a re-simulation would show another shot than was played.
     assert FIRST_RECORDED_ENGINE != ENGINE_VERSION
     assert status == 409 and body[0]["detail"]["code"] == "engine_changed"
+
+
+# What a room stored for a shot before the `motion` message: its `frame` and `event`
+# messages, one a line (`at kind body`), shortened to three frames of two balls.
+LEGACY = (
+    '0.0 event {"shot":1,"tick":0,"t":0.0,"kind":"strike","ids":[0],"speed":9.0,"target":-1,'
+    '"also":[{"tick":17,"t":0.1367,"kind":"ball","ids":[0,9],"speed":8.732,"target":-1}]}\n'
+    '0.05 frame {"shot":1,"tick":6,"b":[[0,1083,635,0],[9,2103,635,0]],'
+    '"ahead":[{"tick":12,"b":[[0,1526,635,2],[9,2103,635,0]]}]}\n'
+    '0.15 frame {"shot":1,"tick":18,"b":[[0,1836,635,3]],"last":true}\n'
+    '0.1 event {"shot":1,"tick":12,"t":0.1,"kind":"pocket","ids":[9],"speed":2.0,"target":2}\n'
+)
+
+
+def test_a_shot_stored_as_frames_and_events_still_replays(client):
+    live_break(client)
+    set_row(client, "UPDATE shots SET motion = ?", zlib.compress(LEGACY.encode()))
+    status, lines = replay(client)
+    assert status == 200 and [m["type"] for m in lines] == ["motion", "shot_result"]
+    motion = decode_motion(base64.b64decode(lines[0]["data"]))
+    assert motion["duration"] == pytest.approx(18 / 120, abs=1e-6)
+    cue, nine = motion["tracks"]
+    assert cue["t"] == pytest.approx([0.05, 0.1, 0.15])  # the frames' ticks are its knots
+    assert cue["x"] == pytest.approx([1.083, 1.526, 1.836])
+    assert nine["pocket"] == 2 and nine["t"] == pytest.approx([0.05, 0.1])
+    # cels 0 -> 2 over 443 mm: 2.47 turns rolled, the step nearest to it (2 cels + 2 turns)
+    assert nine["phase"][1] == nine["phase"][0]
+    assert cue["phase"][1] - cue["phase"][0] == pytest.approx(
+        (2 + 2 * 16) * 2 * 3.14159265 / 16, abs=1e-3
+    )
+    assert [(e["kind"], e["t"]) for e in motion["sounds"]] == [
+        ("strike", 0.0),
+        ("pocket", 0.1),
+        ("ball", 0.1367),
+    ]

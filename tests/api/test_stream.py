@@ -1,6 +1,8 @@
-"""A shot streamed to the room: frames, events, `shot_result`, the next `state`."""
+"""A shot sent to the room: its `motion` message at the strike, `shot_result`, `state`."""
 
 from __future__ import annotations
+
+import time
 
 import pytest
 
@@ -13,8 +15,6 @@ from tests.support.games import (
 from tests.support.messages import (
     assert_valid,
     drain_presence,
-    flat_events,
-    flat_frames,
     greet,
     receive_until,
 )
@@ -24,9 +24,7 @@ pytestmark = pytest.mark.timeout(120)
 
 
 def test_break_is_streamed_to_both_players_and_a_spectator(settings):
-    # pace 2: a frame message every 50 ms, so a busy test machine does not make the room
-    # skip stale frames (a late room does; see the test below)
-    with make_client(settings, pace=2.0) as client:
+    with make_client(settings, pace=4.0) as client:
         stream = _break_streamed(client)
     _check_break_stream(stream)
 
@@ -57,40 +55,38 @@ def _check_break_stream(stream: list[dict]) -> None:
     assert_valid(stream)
     seqs = [m["seq"] for m in stream]
     assert seqs == list(range(seqs[0], seqs[0] + len(seqs)))  # no gaps
-    assert [m["type"] for m in stream[-2:]] == ["shot_result", "state"]
-    assert stream[0]["type"] == "event" and stream[0]["kind"] == "strike"
-    assert stream[0]["speed"] == pytest.approx(9.0)
+    # The whole shot in one message at the strike, then the result and the table at rest.
+    assert [m["type"] for m in stream] == ["motion", "shot_result", "state"]
+    motion = stream[0]
+    assert motion["shot"] == 1
+    assert motion["duration"] == pytest.approx(eight_ball_break_ticks() / 120, abs=1e-6)
 
-    messages = [m for m in stream if m["type"] == "frame"]
-    assert all(len(m.get("ahead", ())) <= 3 for m in messages)  # 4 frames per message
-    assert sum("ahead" in m for m in messages) >= len(messages) - 2
-    frames = flat_frames(stream)
-    ticks = [f["tick"] for f in frames]
-    assert ticks == sorted(set(ticks)) and ticks[:2] == [6, 12]
-    assert all(t % 6 == 0 for t in ticks[:-1])  # every 6th tick (a late loop skips some)
-    assert frames[-1].get("last") is True and all("last" not in f for f in frames[:-1])
-    assert frames[-1]["tick"] == eight_ball_break_ticks()
-    for frame in frames:
-        for ball_id, x, y, cel in frame["b"]:
-            assert 0 <= ball_id <= 15 and 0 <= cel < 16
-            assert -100 <= x <= 2640 and -100 <= y <= 1370
-    assert len(frames[0]["b"]) == 16
-    first_positions = {row[0]: row[1:3] for row in frames[0]["b"]}
-    assert first_positions[0][0] > 635  # the cue ball left the head spot along +x
+    tracks = {t["id"]: t for t in motion["tracks"]}
+    assert sorted(tracks) == list(range(16))
+    for track in tracks.values():
+        assert track["t"][0] == 0.0 and track["t"] == sorted(track["t"])
+        assert track["t"][-1] <= motion["duration"] + 1e-6
+        assert all(-0.1 <= x <= 2.64 for x in track["x"])
+        assert all(-0.1 <= y <= 1.37 for y in track["y"])
+    cue = tracks[0]
+    assert (cue["x"][0], cue["y"][0]) == (0.635, 0.635)  # from the head spot ...
+    assert cue["x"][1] > 0.635 and len(cue["t"]) > 2  # ... along +x, and on
+    dropped = [i for i, t in tracks.items() if t["pocket"] is not None]
+    assert dropped == [EIGHT_BALL_BREAK_BALL]
 
-    event_messages = [m for m in stream if m["type"] == "event"]
-    events = flat_events(stream)
-    assert len(event_messages) < len(events)  # a break's contacts share messages (`also`)
-    kinds = {e["kind"] for e in events}
+    sounds = motion["sounds"]
+    assert sounds[0]["kind"] == "strike" and sounds[0]["t"] == 0.0
+    assert sounds[0]["speed"] == pytest.approx(9.0)
+    kinds = {e["kind"] for e in sounds}
     assert {"strike", "ball", "cushion"} <= kinds and "rest" not in kinds
-    assert any(e["kind"] == "ball" and 0 in e["ids"] for e in events)
-    event_ticks = [e["tick"] for e in events]
-    assert event_ticks == sorted(event_ticks)
-    for e in event_messages:  # before the first frame message at or after its tick ...
-        later = [f for f in messages if f["tick"] >= e["tick"]]
-        assert not later or stream.index(e) < stream.index(later[0])
-        # ... with the events of at most one frame message's span (4 frames of 6 ticks)
-        assert all(0 <= a["tick"] - e["tick"] <= 25 for a in e.get("also", ()))
+    assert any(e["kind"] == "ball" and 0 in e["ids"] for e in sounds)
+    times = [e["t"] for e in sounds]
+    assert times == sorted(times)
+    pocket = [e for e in sounds if e["kind"] == "pocket"]
+    assert [e["ids"] for e in pocket] == [[EIGHT_BALL_BREAK_BALL]]
+    # The dropped ball's track ends where it drops, at its pocket sound's time.
+    assert tracks[EIGHT_BALL_BREAK_BALL]["t"][-1] == pytest.approx(pocket[0]["t"], abs=2e-6)
+    assert tracks[EIGHT_BALL_BREAK_BALL]["pocket"] == pocket[0]["target"]
 
     result, state = stream[-2], stream[-1]
     outcome = result["outcome"]
@@ -104,40 +100,38 @@ def _check_break_stream(stream: list[dict]) -> None:
     assert outcome["message"] == EIGHT_BALL_BREAK_SAYS
     assert state["phase"] == "aiming" and state["shot"] is None
     assert state["match"]["turn"] == 0 and state["match"]["breaking"] is False
-    assert [e["ids"] for e in events if e["kind"] == "pocket"] == [[EIGHT_BALL_BREAK_BALL]]
-    assert len(frames[-1]["b"]) == len(state["balls"]) == 15
-    assert sorted(state["balls"]) == sorted(frames[-1]["b"])  # where the stream ended
+    assert len(state["balls"]) == 15
+    for ball_id, x_mm, y_mm, _ in state["balls"]:  # the tracks end where the balls rest
+        track = tracks[ball_id]
+        assert abs(track["x"][-1] * 1000 - x_mm) <= 0.6
+        assert abs(track["y"][-1] * 1000 - y_mm) <= 0.6
 
 
-def test_member_joining_mid_shot_gets_state_and_joins_the_stream(settings):
-    with make_client(settings, pace=2.0) as client:
+def test_member_joining_mid_shot_gets_state_and_the_motion(settings):
+    """A late joiner gets where the shot is now (`state.shot.tick`) and the same motion
+    message the others got at the strike, to play from that tick on."""
+    with make_client(settings, pace=1.0) as client:
         room_id, ta, _ = seated_room(client)
         with connect(client, room_id, ta) as a:
             greet(a)
             a.send_json(BREAK_MESSAGE)
-            for _ in range(1000):
-                message = a.receive_json()
-                if message["type"] == "frame" and message["tick"] >= 60:
-                    break
+            sent = a.receive_json()
+            assert sent["type"] == "motion"
+            time.sleep(0.5)  # the break is being shown
             with connect(client, room_id) as s:
                 welcome, state = greet(s)
                 assert state["phase"] == "rolling"
                 assert state["shot"]["id"] == 1 and state["shot"]["seat"] == 0
                 assert (
-                    60 <= state["shot"]["tick"] < state["shot"]["ticks"] == eight_ball_break_ticks()
+                    30 <= state["shot"]["tick"] < state["shot"]["ticks"] == eight_ball_break_ticks()
                 )
                 assert state["match"]["turn"] == 0  # the match as it was at the strike
                 assert state["match"]["balls"][EIGHT_BALL_BREAK_BALL]["on_table"]
-                assert 10 <= len(state["balls"]) <= 16
                 assert state["seq"] == welcome["seq"]
                 rest = receive_until(s, "state")
-            seqs = [m["seq"] for m in rest]
-            assert seqs[0] == welcome["seq"] + 2  # after our own presence
-            assert seqs == list(range(seqs[0], seqs[0] + len(seqs)))
-            frames = [m for m in rest if m["type"] == "frame"]
-            assert frames and frames[0]["tick"] > state["shot"]["tick"]
-            assert frames[-1]["tick"] == state["shot"]["ticks"]
-            assert rest[-2]["type"] == "shot_result"
+            assert rest[0] == sent  # the very message, its seq from before we came
+            assert [m["type"] for m in rest[1:]] == ["shot_result", "state"]
+            assert rest[1]["seq"] == welcome["seq"] + 2  # after our own presence
 
 
 def test_rest_state_is_the_same_over_http_and_websocket(client):
@@ -151,35 +145,17 @@ def test_rest_state_is_the_same_over_http_and_websocket(client):
     assert http_state["match"] == final["match"]
 
 
-def test_a_late_room_skips_stale_frames_but_never_events_or_the_last_frame(settings):
-    """The loop stalls mid-shot (an overloaded server): the frames that fell due meanwhile
-    are not sent as a burst; the stream stays gapless and ends exactly as planned."""
-    import time
-
-    with make_client(settings, pace=1.0) as client:
+def test_the_result_waits_for_the_motion_to_be_shown(settings):
+    """The motion leaves at the strike; the outcome only once the shot has been played
+    (`pace` 4: a quarter of its duration), so nobody learns it before seeing it."""
+    with make_client(settings, pace=4.0) as client:
         room_id, ta, _ = seated_room(client)
-        live = client.app.state.registry.get(room_id)
-        show = live.room.show
-        stalled = []
-
-        def stall_once(timed, frames):
-            if timed.frame is not None and not stalled:
-                stalled.append(timed.tick)
-                time.sleep(1.0)  # blocks the event loop: 120 ticks of frames fall due
-            show(timed, frames)
-
-        live.room.show = stall_once
         with connect(client, room_id, ta) as a:
             greet(a)
             a.send_json(BREAK_MESSAGE)
-            stream = receive_until(a, "state")
-    seqs = [m["seq"] for m in stream]
-    assert seqs == list(range(seqs[0], seqs[0] + len(seqs)))
-    frames = [m for m in stream if m["type"] == "frame"]
-    ticks = [f["tick"] for f in frames]
-    per_second = 20 / settings.frames_per_message  # frame messages a second
-    assert client.app.state.registry.metrics.frames_skipped >= per_second - 2  # in 1 s
-    assert not any(stalled[0] < t < stalled[0] + 96 for t in ticks)  # skipped, not sent late
-    assert frames[-1].get("last") is True
-    events = flat_events(stream)
-    assert len(events) > 20 and events[0]["kind"] == "strike"
+            motion = a.receive_json()
+            started = time.monotonic()
+            result = a.receive_json()
+            waited = time.monotonic() - started
+    assert motion["type"] == "motion" and result["type"] == "shot_result"
+    assert waited >= motion["duration"] / 4 - 0.05

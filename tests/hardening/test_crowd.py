@@ -17,6 +17,7 @@ from server.app import create_app
 from server.config import Settings
 from server.embedded import bound_socket, serving
 from server.rooms import SeedSource
+from tests.support.messages import decoded
 
 pytestmark = pytest.mark.timeout(240)
 SHOTS = 4
@@ -42,7 +43,7 @@ async def player(
                     synced = True
                     await ws.send(json.dumps({"type": "sync"}))
                 try:
-                    message = json.loads(await asyncio.wait_for(ws.recv(), 0.5))
+                    message = decoded(await asyncio.wait_for(ws.recv(), 0.5))
                 except TimeoutError:
                     continue
                 if message["type"] == "shot_result":

@@ -16,6 +16,7 @@ from server.app import create_app
 from server.config import Settings
 from server.rooms import SeedSource
 from server.store import Database
+from tests.support.rooms import connect
 
 pytestmark = pytest.mark.timeout(120)
 TABLE = [2.54, 1.27, 0.028575, 0.114, 0.127]
@@ -71,11 +72,11 @@ def test_a_shot_is_public_only_once_it_has_been_shown(slow_client: TestClient):
         client.post(f"/api/rooms/{room_id}/join", json={"name": n}).json()["token"]
         for n in ("Ana", "Ben")
     ]
-    with client.websocket_connect(f"/ws/rooms/{room_id}?token={tokens[0]}") as ana:
+    with connect(client, room_id, tokens[0]) as ana:
         while ana.receive_json()["type"] != "presence":
             pass
         ana.send_json({"type": "shoot", "angle": 0.0, "speed": 9.0})
-        while ana.receive_json()["type"] != "frame":
+        while ana.receive_json()["type"] != "motion":
             pass  # the break is being shown now
         during = client.get("/api/matches/1").json()
         replay = client.get("/api/matches/1/shots/1/replay")

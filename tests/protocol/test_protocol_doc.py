@@ -44,6 +44,7 @@ from pydantic import BaseModel, TypeAdapter, ValidationError
 
 from server.api.http import router as http_router
 from server.api.matches import router as matches_router
+from server.api.players import router as players_router
 from server.api.schemas import ErrorResponse
 from server.config import Settings
 from server.engine import TICK_HZ
@@ -217,7 +218,7 @@ def required_names(cls: Any, seen: set[Any]) -> dict[str, str]:
 def api_routes() -> list[APIRoute]:
     return [
         r
-        for router in (http_router, matches_router)
+        for router in (http_router, matches_router, players_router)
         for r in router.routes
         if isinstance(r, APIRoute)
     ]

@@ -1,53 +1,36 @@
-"""`superseded_times`: when the frame after each streamed message falls due, so a late room
-skips a stale frame instead of sending a burst."""
+"""`ShotPlan.shown_at`: which of a shot's frames a member joining at an instant is shown in
+its `state` (`state.shot.tick`, `state.balls`); the `motion` message then plays on from
+there."""
 
 from __future__ import annotations
 
-import json
-import math
-
-from server.engine import Table, rack, simulate
-from server.protocol import Timed, plan_shot
-from server.rooms.live import superseded_times
-from tests.support.games import BREAK, EIGHT_BALL, eight_ball_break_ticks
-
-INF = math.inf
+from server.engine import TICK_HZ, Shot, Table, rack, simulate
+from server.protocol import plan_shot, trace
 
 
-def frame(at: float, index: int) -> Timed:
-    return Timed(at, "frame", "{}", True, tick=index * 6, frame=index)
-
-
-def event(at: float) -> Timed:
-    return Timed(at, "event", "{}", False)
-
-
-def test_each_frame_is_superseded_when_the_next_frame_is_due() -> None:
-    plan = [frame(0.05, 0), frame(0.10, 1), frame(0.15, 2)]
-    assert superseded_times(plan) == [0.10, 0.15, INF]  # the last frame never is
-
-
-def test_events_between_frames_wait_for_the_next_frame_not_the_next_event() -> None:
-    plan = [event(0.0), frame(0.05, 0), event(0.06), event(0.08), frame(0.10, 1), event(0.12)]
-    assert superseded_times(plan) == [0.05, 0.10, 0.10, 0.10, INF, INF]
-
-
-def test_without_frames_nothing_is_superseded() -> None:
-    assert superseded_times([]) == []
-    assert superseded_times([event(0.0), event(0.5)]) == [INF, INF]
-
-
-def test_a_real_break_plan() -> None:
+def _plan():
     table = Table.pool("9ft")
-    result = simulate(table, rack("eight_ball", table, seed=EIGHT_BALL), BREAK)
-    plan = plan_shot(result, 1, 6, 4).messages
-    times = superseded_times(plan)
-    assert len(times) == len(plan)
-    frames = [json.loads(m.body) for m in plan if m.frame is not None]
-    ticks = [t for f in frames for t in (f["tick"], *(a["tick"] for a in f.get("ahead", ())))]
-    last = eight_ball_break_ticks()
-    assert ticks == [*range(6, last, 6), last]  # every 6th tick, and the last
-    for i, t in enumerate(times):
-        later = [m.at for m in plan[i + 1 :] if m.frame is not None]
-        assert t == (later[0] if later else INF)
-    assert times == sorted(times) and times[-1] == INF
+    balls = rack("eight_ball", table, seed=3)
+    shot = Shot(0.0, 9.0)
+    result = simulate(table, balls, shot)
+    return result, plan_shot(result, trace(table, balls, shot), 1, 6)
+
+
+def test_a_joiner_is_shown_the_latest_frame_due():
+    result, plan = _plan()
+    assert plan.shown_at(0.0).tick == 6  # nothing due yet: the first frame
+    assert plan.shown_at(0.25).tick == 30  # tick 30 is due at 0.25 s
+    assert plan.shown_at(0.25 - 1e-6).tick == 24
+    assert plan.shown_at(100.0).tick == len(result.frames)  # over: the last frame
+    shown = plan.shown_at(0.5)
+    assert plan.frames.ticks[shown.frame] == shown.tick == 60
+    assert shown.at == 60 / TICK_HZ
+
+
+def test_the_last_frame_is_the_table_at_rest():
+    result, plan = _plan()
+    last = plan.last
+    assert last.tick == len(result.frames) and not last.droppable
+    rows = plan.frames.rows(last.frame)
+    final = result.final
+    assert sorted(r[0] for r in rows) == final.ids[final.on_table].tolist()

@@ -1,30 +1,26 @@
-"""The repository and the database thread: round trips, exact floats, idempotent writes."""
+"""The repository and the database thread, on SQLite and PostgreSQL: round trips, exact
+floats, idempotent writes."""
 
 from __future__ import annotations
 
 import asyncio
 import json
 import math
-import sqlite3
+import threading
 from pathlib import Path
 
 import numpy as np
 import pytest
+from sqlalchemy import text
+from sqlalchemy.exc import IntegrityError
 
 from server.engine import BallSet, Shot, Table, rack, simulate
 from server.rooms.replay import resimulate
-from server.store import Database, Repository
-from server.store.schema import MIGRATIONS, migrate
+from server.store import Database, Repository, StaleOwner
 
 TABLE = Table.pool("9ft")
+PLAYED = 1795700416.3912654 + 1 / 3  # a time with a long binary expansion
 TABLE_FIELDS = [TABLE.length, TABLE.width, TABLE.ball_radius, TABLE.corner_mouth, TABLE.side_mouth]
-
-
-@pytest.fixture
-def db(tmp_path: Path):
-    database = Database(tmp_path / "billiards.db")
-    yield database
-    database.close()
 
 
 def awkward_balls() -> BallSet:
@@ -35,15 +31,6 @@ def awkward_balls() -> BallSet:
     return balls
 
 
-def test_migrations_run_once_and_record_the_version(tmp_path: Path) -> None:
-    conn = sqlite3.connect(tmp_path / "m.db", isolation_level=None)
-    assert migrate(conn) == len(MIGRATIONS)
-    assert migrate(conn) == len(MIGRATIONS)  # a second start changes nothing
-    assert conn.execute("PRAGMA user_version").fetchone()[0] == len(MIGRATIONS)
-    tables = {r[0] for r in conn.execute("SELECT name FROM sqlite_master WHERE type='table'")}
-    assert {"matches", "games", "shots", "rooms"} <= tables
-
-
 def test_match_game_and_shot_round_trip_exactly(db: Database) -> None:
     balls = awkward_balls()
     shot = {"angle": 0.1 + 0.2, "speed": 8.999999999999998, "tip": [1 / 3 * 0.5, -0.1]}
@@ -51,7 +38,9 @@ def test_match_game_and_shot_round_trip_exactly(db: Database) -> None:
 
     def write(repo: Repository) -> int:
         repo.start_match(7, "room-a", "eight_ball", ["Ana", "Ben"], 3, started_at=100.0)
-        n1 = repo.record_shot(7, 1, 1, 0, shot, TABLE_FIELDS, balls.to_dict(), outcome)
+        n1 = repo.record_shot(
+            7, 1, 1, 0, shot, TABLE_FIELDS, balls.to_dict(), outcome, played_at=PLAYED
+        )
         n2 = repo.record_shot(7, 2, 1, 1, shot, TABLE_FIELDS, balls.to_dict(), outcome)
         again = repo.record_shot(7, 1, 1, 0, shot, TABLE_FIELDS, balls.to_dict(), outcome)
         assert (n1, n2, again) == (1, 2, 1)  # the same room shot is stored once
@@ -76,6 +65,7 @@ def test_match_game_and_shot_round_trip_exactly(db: Database) -> None:
     assert [(g.n, g.winner, g.score) for g in games] == [(1, 1, [0, 1])]
     stored = db.run(lambda repo: repo.shot(7, 1))
     assert stored is not None and stored.shot == shot and stored.outcome == outcome
+    assert stored.played_at.hex() == PLAYED.hex()  # a time reads back bit for bit too
     back = BallSet.from_dict(stored.balls)
     for name in ("positions", "velocities", "spins", "phases"):
         assert getattr(back, name).tobytes() == getattr(balls, name).tobytes()
@@ -124,18 +114,19 @@ def test_recent_matches_newest_first_with_a_status_filter(db: Database) -> None:
     assert [m.id for m in db.run(lambda r: r.recent_matches(10, "playing"))] == [5, 3, 1]
 
 
-def test_rooms_save_overwrite_delete_and_survive_reopening(tmp_path: Path) -> None:
-    path = tmp_path / "rooms.db"
-    first = Database(path)
+def test_rooms_save_overwrite_delete_and_survive_reopening(target: str | Path) -> None:
+    first = Database(target)
     first.submit(lambda r: r.save_room("a", json.dumps({"v": 1})))
     first.submit(lambda r: r.save_room("b", json.dumps({"v": 2})))
     first.submit(lambda r: r.save_room("a", json.dumps({"v": 3})))
     first.submit(lambda r: r.delete_room("b"))
     first.close()  # waits for the queue
-    second = Database(path)
+    second = Database(target)
     try:
         rooms = second.run(lambda r: r.rooms())
         assert [(s.room_id, s.data) for s in rooms] == [("a", {"v": 3})]
+        assert second.run(lambda r: r.room("a")) == rooms[0]
+        assert second.run(lambda r: r.room("b")) is None
     finally:
         second.close()
 
@@ -143,8 +134,9 @@ def test_rooms_save_overwrite_delete_and_survive_reopening(tmp_path: Path) -> No
 def test_call_from_the_event_loop_and_errors_come_back(db: Database) -> None:
     async def main() -> None:
         assert await db.call(lambda r: r.last_match_id()) == 0
-        with pytest.raises(sqlite3.IntegrityError):
-            await db.call(lambda r: r.conn.execute("INSERT INTO rooms VALUES (NULL, NULL, 0)"))
+        bad = text("INSERT INTO rooms VALUES (NULL, NULL, 0)")
+        with pytest.raises(IntegrityError):
+            await db.call(lambda r: r.run_in_transaction(bad))
         assert await db.call(lambda r: r.rooms()) == []  # the thread survived the error
 
     asyncio.run(main())
@@ -153,8 +145,7 @@ def test_call_from_the_event_loop_and_errors_come_back(db: Database) -> None:
         db.run(lambda r: r.rooms())
 
 
-def test_a_shot_keeps_its_engine_version_and_motion(tmp_path: Path) -> None:
-    db = Database(tmp_path / "m.db")
+def test_a_shot_keeps_its_engine_version_and_motion(db: Database) -> None:
     motion = "".join(f'{i / 20!r} frame {{"shot":1,"tick":{i * 6}}}\n' for i in range(200))
 
     def write(repo: Repository) -> None:
@@ -175,8 +166,33 @@ def test_a_shot_keeps_its_engine_version_and_motion(tmp_path: Path) -> None:
     db.run(write)
     stored = db.run(lambda repo: repo.shot(1, 1))
     listed = db.run(lambda repo: repo.shots(1))
-    size = db.run(lambda repo: repo.conn.execute("SELECT length(motion) FROM shots").fetchone())
-    db.close()
+    size = db.run(lambda r: r.run_in_transaction(text("SELECT length(motion) FROM shots")))
     assert stored is not None and (stored.engine, stored.motion) == ("1+abc", motion)
     assert [(s.engine, s.motion) for s in listed] == [("1+abc", None)]  # lists skip motion
-    assert size[0] < len(motion) / 4  # stored compressed
+    assert size < len(motion) / 4  # stored compressed (a blob; bytea on PostgreSQL)
+
+
+def test_queued_writes_share_a_transaction_yet_fail_alone(target: str | Path) -> None:
+    """Writes queued together run as one transaction (one commit), each in a savepoint: a
+    refused or broken write fails alone, the others are stored, in order."""
+    db = Database(target, batch=64)
+    gate = threading.Event()
+    db.submit(lambda r: gate.wait(30))  # holds the store thread while the writes queue
+    shot = {"angle": 0.0, "speed": 1.0, "tip": [0.0, 0.0]}
+    futures = [
+        db.write(lambda r: r.start_match(1, "room", "practice", ["Ana"], 1, epoch=2), "start"),
+        db.write(lambda r: r.record_shot(1, 1, 1, 0, shot, [], {}, {}, epoch=2), "shot 1"),
+        db.write(lambda r: r.save_room("room", "{}", epoch=1), "stale"),  # refused
+        db.write(lambda r: r.record_shot(9, 1, 1, 0, shot, [], {}, {}), "no match"),  # broken
+        db.write(lambda r: r.record_shot(1, 2, 1, 0, shot, [], {}, {}, epoch=2), "shot 2"),
+    ]
+    gate.set()
+    assert [f.result(30) for f in (futures[0], futures[1], futures[4])] == [None, 1, 2]
+    with pytest.raises(StaleOwner):
+        futures[2].result(30)
+    with pytest.raises(IntegrityError):
+        futures[3].result(30)
+    assert [s.room_shot for s in db.run(lambda r: r.shots(1))] == [1, 2]
+    assert db.run(lambda r: r.rooms()) == []
+    assert db.run(lambda r: r.room_epoch("room")) == 2
+    db.close()

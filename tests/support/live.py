@@ -14,6 +14,7 @@ from server.config import Settings
 from server.embedded import bound_socket, serving
 
 from .games import EIGHT_BALL
+from .messages import decoded
 from .rooms import app_with
 
 
@@ -41,7 +42,8 @@ def ws_url(address: str, room_id: str, token: str | None = None) -> str:
 
 
 async def recv(ws: Any, timeout: float = 20) -> dict:
-    return json.loads(await asyncio.wait_for(ws.recv(), timeout))
+    """The next message; the binary `motion` message decoded (`messages.decoded`)."""
+    return decoded(await asyncio.wait_for(ws.recv(), timeout))
 
 
 async def until(ws: Any, kind: str, timeout: float = 20) -> list[dict]:

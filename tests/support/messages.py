@@ -1,5 +1,7 @@
 """Reading what a room sends, on any socket with `send_json` and `receive_json`: a
-TestClient WebSocket session, or `JsonSocket` around a `websockets` client of a real server."""
+TestClient WebSocket session (`rooms.connect`), or `JsonSocket` around a `websockets` client
+of a real server. A shot's binary `motion` message comes back decoded, as a dict
+(`protocol.motion.decode_motion`), so a stream reads as one list of messages."""
 
 from __future__ import annotations
 
@@ -7,6 +9,7 @@ import json
 from collections.abc import Callable, Iterable
 from typing import Any, Protocol
 
+from server.protocol.motion import decode_motion
 from server.protocol.outbound import replay_messages, server_messages
 
 
@@ -26,7 +29,20 @@ class JsonSocket:
         self.connection.send(json.dumps(data))
 
     def receive_json(self) -> Any:
-        return json.loads(self.connection.recv(timeout=self.timeout))
+        return decoded(self.connection.recv(timeout=self.timeout))
+
+
+def decoded(data: str | bytes) -> Any:
+    """A received WebSocket message: JSON text, or the binary `motion` message."""
+    return decode_motion(data) if isinstance(data, bytes) else json.loads(data)
+
+
+def receive_any(session: Any) -> Any:
+    """`receive_json` for a TestClient session that may also get binary messages."""
+    message = session.receive()
+    session._raise_on_close(message)
+    text = message.get("text")
+    return decoded(text if text is not None else message["bytes"])
 
 
 def receive_until(ws: Socket, kind: str | Iterable[str], limit: int = 5000) -> list[dict]:
@@ -85,26 +101,9 @@ def of_type(messages: list[dict], kind: str) -> list[dict]:
     return [m for m in messages if m["type"] == kind]
 
 
-def flat_events(stream: list[dict]) -> list[dict]:
-    """Every event of a stream in time order: each `event` message and the events it
-    carries in `also` (with the message's shot)."""
-    out = []
-    for m in stream:
-        if m["type"] == "event":
-            out.append(m)
-            out.extend({"type": "event", "shot": m["shot"], **a} for a in m.get("also", ()))
-    return out
-
-
-def flat_frames(stream: list[dict]) -> list[dict]:
-    """Every frame of a stream in tick order: each `frame` message and the frames it
-    carries early in `ahead` (with the message's shot)."""
-    out = []
-    for m in stream:
-        if m["type"] == "frame":
-            out.append(m)
-            out.extend({"type": "frame", "shot": m["shot"], **a} for a in m.get("ahead", ()))
-    return out
+def motions(stream: list[dict]) -> list[dict]:
+    """The decoded `motion` messages of a stream."""
+    return [m for m in stream if m["type"] == "motion"]
 
 
 def shot_payload(message: dict) -> dict:
@@ -122,5 +121,7 @@ def assert_valid(messages: Iterable[dict], replay: bool = False) -> None:
     `replay`), and the model is the one its `type` names."""
     adapter = replay_messages if replay else server_messages
     for m in messages:
+        if m["type"] == "motion" and not replay:
+            continue  # binary, checked byte by byte by its own tests
         model = adapter.validate_python(m)
         assert model.type == m["type"], m  # type: ignore[union-attr]

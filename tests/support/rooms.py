@@ -6,6 +6,7 @@ server.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 from typing import Any
 
@@ -21,7 +22,7 @@ from server.rooms import SYSTEM_CLOCK, Clock, SeedSource
 from server.store import Database
 
 from .games import EIGHT_BALL, shoot_message
-from .messages import Socket, receive_until
+from .messages import Socket, receive_any, receive_until
 
 
 def app_with(
@@ -64,8 +65,12 @@ def seated_room(http: httpx.Client, game: str = "eight_ball", **extra: Any) -> t
 def connect(
     client: TestClient, room_id: str, token: str | None = None, **kwargs: Any
 ) -> WebSocketTestSession:
+    """A room socket whose `receive_json` also reads the binary `motion` message (decoded:
+    `messages.receive_any`)."""
     url = f"/ws/rooms/{room_id}" + (f"?token={token}" if token else "")
-    return client.websocket_connect(url, **kwargs)
+    session = client.websocket_connect(url, **kwargs)
+    session.receive_json = functools.partial(receive_any, session)  # type: ignore[method-assign]
+    return session
 
 
 def place_cue(shooter: Socket, x: float, y: float) -> dict:

@@ -77,6 +77,12 @@ export class TableAudio {
     }
   }
 
+  /** The shot clock's tick, once a second in its last seconds. */
+  tick() {
+    if (!this.ctx || this.muted || this.ctx.state !== 'running') return;
+    this.tone(this.ctx.currentTime, 1900, 1600, 0.22, 0.035, 'square');
+  }
+
   /**
    * A gain node rising to `peak` in `attack` s and dying away over `decay` s.
    * @param {number} t

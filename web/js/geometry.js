@@ -267,7 +267,7 @@ export function placementArea(table, ballInHand) {
  * @param {Iterable<{id: number, x: number, y: number}>} balls
  * @param {number} x
  * @param {number} y
- * @returns {{x: number, y: number, free: boolean}}
+ * @returns {{x: number, y: number, free: boolean, clamped: boolean}}
  */
 export function placeCue(table, area, balls, x, y) {
   const cx = Math.min(Math.max(x, area.x0), area.x1);
@@ -278,7 +278,9 @@ export function placeCue(table, area, balls, x, y) {
     if (b.id === 0) continue;
     if (dist(cx, cy, b.x, b.y) < 2 * r) { free = false; break; }
   }
-  return { x: cx, y: cy, free };
+  // Held outside the legal area: the ball stays on its edge (and the player is told why).
+  const clamped = Math.abs(cx - x) > r * 0.5 || Math.abs(cy - y) > r * 0.5;
+  return { x: cx, y: cy, free, clamped };
 }
 
 /**
@@ -351,4 +353,45 @@ export function clampTip(side, height, limit) {
 export function squirt(side, massRatio) {
   const cos2 = 1 - side * side;
   return Math.atan((2.5 * side * Math.sqrt(cos2)) / (1 + massRatio + 2.5 * cos2));
+}
+
+/**
+ * Where an object ball sent from `from` along unit `dir` stops being predictable: its
+ * centre reaches a cushion, a jaw or another ball, or enters a pocket (it drops). The
+ * guide line of the object ball ends there, never across a rail or off the table.
+ * `skip` are ball ids ignored (the object ball itself and the cue ball).
+ * @param {Table} table
+ * @param {Iterable<{id: number, x: number, y: number}>} balls
+ * @param {Vec} from
+ * @param {Vec} dir
+ * @param {number[]} [skip]
+ * @returns {{kind: 'cushion' | 'jaw' | 'ball' | 'pocket' | 'none', t: number, end: Vec}}
+ */
+export function objectPath(table, balls, from, dir, skip = [0]) {
+  const r = table.ball_radius;
+  const [px, py] = from;
+  const [dx, dy] = dir;
+  /** @type {'cushion' | 'jaw' | 'ball' | 'pocket' | 'none'} */
+  let kind = 'none';
+  let t = rayBox(px, py, dx, dy, 0, 0, table.length, table.width);
+  for (const c of table.cushions) {
+    const tc = rayCushion(px, py, dx, dy, c, r);
+    if (tc < t) { t = tc; kind = 'cushion'; }
+  }
+  for (const c of table.cushions) {
+    for (const j of [c.start, c.end]) {
+      const tj = rayCircle(px, py, dx, dy, j[0], j[1], r);
+      if (tj < t) { t = tj; kind = 'jaw'; }
+    }
+  }
+  for (const p of table.pockets) {
+    const tp = rayCircle(px, py, dx, dy, p.center[0], p.center[1], p.radius);
+    if (tp < t) { t = tp; kind = 'pocket'; }
+  }
+  for (const b of balls) {
+    if (skip.includes(b.id)) continue;
+    const tb = rayCircle(px, py, dx, dy, b.x, b.y, 2 * r);
+    if (tb < t) { t = tb; kind = 'ball'; }
+  }
+  return { kind, t, end: [px + t * dx, py + t * dy] };
 }

@@ -65,6 +65,12 @@ export const MAX_PULL = 0.4;
 /** Below this power a release is a cancel. */
 export const MIN_POWER = 0.03;
 
+/**
+ * What the player is told after an action that did nothing on purpose (a cancelled shot,
+ * a refused drop of the cue ball). `seq` grows with each one, so the shell shows it once.
+ * @typedef {{seq: number, kind: 'cancelled' | 'refused', text: string}} Feedback
+ */
+
 export class AimController {
   constructor() {
     this.angle = 0; // radians, table frame
@@ -77,10 +83,35 @@ export class AimController {
     this.anchor = null;
     /** @type {[number, number] | null} last pointer position (table metres) */
     this.pointer = null;
-    /** @type {{x: number, y: number, free: boolean} | null} wished cue-ball place while dragging */
+    /** @type {{x: number, y: number, free: boolean, clamped?: boolean} | null} wished cue-ball
+     *  place while dragging */
     this.placing = null;
     this.hoverPocket = -1;
     this.dirty = false; // aim changed since the last `aim` message
+    /** @type {Feedback} */
+    this.feedback = { seq: 0, kind: 'cancelled', text: '' };
+  }
+
+  /**
+   * @param {Feedback['kind']} kind
+   * @param {string} text
+   */
+  tell(kind, text) {
+    this.feedback = { seq: this.feedback.seq + 1, kind, text };
+  }
+
+  /**
+   * Fine aim: turn the cue by `delta` radians (buttons, arrow keys, the mouse wheel).
+   * @param {number} delta
+   */
+  nudge(delta) {
+    this.angle = Math.atan2(Math.sin(this.angle + delta), Math.cos(this.angle + delta));
+    this.dirty = true;
+  }
+
+  /** True while a press has not been pulled back far enough to shoot on release. */
+  get tooShort() {
+    return this.mode === 'pulling' && this.power < MIN_POWER;
   }
 
   reset() {
@@ -100,7 +131,12 @@ export class AimController {
   handle(action, ctx) {
     /** @type {Record<string, any>[]} */
     const out = [];
-    if (action.type === 'cancel') { this.reset(); this.dirty = true; return out; }
+    if (action.type === 'cancel') {
+      if (this.mode === 'pulling') this.tell('cancelled', 'Shot cancelled.');
+      this.reset();
+      this.dirty = true;
+      return out;
+    }
     /** @type {[number, number] | null} */
     const p = action.x === undefined || action.y === undefined ? this.pointer
       : [action.x, action.y];
@@ -151,13 +187,18 @@ export class AimController {
         if (this.mode === 'placing' && this.placing) {
           if (this.placing.free) {
             out.push({ type: 'place_cue', x: round6(this.placing.x), y: round6(this.placing.y) });
+          } else {
+            this.tell('refused', 'The cue ball cannot go on another ball: drop it on free cloth.');
           }
           this.mode = 'idle';
+          this.placing = null;
           break;
         }
         if (this.mode === 'pulling') {
           if (p && this.anchor) this.power = pullPower(this.anchor, p, this.angle, MAX_PULL);
-          if (this.power >= MIN_POWER) {
+          if (this.power < MIN_POWER) {
+            this.tell('cancelled', 'Shot cancelled: keep pressing and pull back, then let go.');
+          } else {
             const { max_speed: maxSpeed, max_tip: maxTip } = ctx.limits;
             const tip = clampTip(this.tip[0], this.tip[1], maxTip);
             const rounded = tip.map(round6);

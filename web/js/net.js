@@ -1,8 +1,11 @@
 /**
  * Talking to the server: the HTTP API (rooms) and the room WebSocket with automatic
  * reconnection (exponential back-off, capped). Messages go out as JSON objects; incoming
- * ones are parsed and handed to `onMessage`. See docs/protocol.md.
+ * ones are parsed (the binary `motion` message decoded by track.js) and handed to
+ * `onMessage`. See docs/protocol.md.
  */
+
+import { decodeMotion } from './track.js';
 
 /** An HTTP API error: the server's message, status and error code. */
 export class ApiError extends Error {
@@ -24,7 +27,7 @@ export class ApiError extends Error {
  * @param {object} [body]
  * @returns {Promise<any>}
  */
-async function request(method, path, body) {
+export async function request(method, path, body) {
   const res = await fetch(path, {
     method,
     headers: body ? { 'Content-Type': 'application/json' } : {},
@@ -48,11 +51,12 @@ export const api = {
    * @param {number} [shotClock]
    * @param {boolean} [listed] false: a private table, reached only through its link
    * @param {string} [opponent] the computer's level, to play it in the second seat
+   * @param {boolean} [ranked] a ranked table: rated when both players agree
    */
-  createRoom: (game, raceTo, shotClock, listed = true, opponent = undefined) =>
+  createRoom: (game, raceTo, shotClock, listed = true, opponent = undefined, ranked = false) =>
     request('POST', '/api/rooms', { game, race_to: raceTo, listed,
       ...(shotClock !== undefined ? { shot_clock: shotClock } : {}),
-      ...(opponent ? { opponent } : {}) }),
+      ...(opponent ? { opponent } : {}), ...(ranked ? { ranked } : {}) }),
   computerLevels: () => request('GET', '/api/computer'),
   listRooms: () => request('GET', '/api/rooms'),
   /** @param {string} roomId */
@@ -60,9 +64,11 @@ export const api = {
   /**
    * @param {string} roomId
    * @param {string} name
+   * @param {boolean} [ranked] agree that a ranked table changes your rating
    */
-  join: (roomId, name) => request('POST', `/api/rooms/${encodeURIComponent(roomId)}/join`,
-    { name }),
+  join: (roomId, name, ranked = false) =>
+    request('POST', `/api/rooms/${encodeURIComponent(roomId)}/join`,
+      { name, ...(ranked ? { ranked } : {}) }),
   finishedMatches: (limit = 10) => request('GET', `/api/matches?status=finished&limit=${limit}`),
   /** @param {string} matchId */
   getMatch: (matchId) => request('GET', `/api/matches/${encodeURIComponent(matchId)}`),
@@ -118,25 +124,43 @@ export class RoomSocket {
     /** @type {ReturnType<typeof setTimeout> | undefined} */
     this.timer = undefined;
     this.refusals = 0;
+    /** @type {string | null} the room's `ws_url`: where it is played now */
+    this.wsUrl = null;
   }
 
   url() {
-    const proto = location.protocol === 'https:' ? 'wss:' : 'ws:';
     const token = this.getToken();
     const q = token ? `?token=${encodeURIComponent(token)}` : '';
+    if (this.wsUrl) return `${this.wsUrl}${q}`;
+    const proto = location.protocol === 'https:' ? 'wss:' : 'ws:';
     return `${proto}//${location.host}/ws/rooms/${encodeURIComponent(this.roomId)}${q}`;
   }
 
+  /**
+   * Connect where the room is played now: its `ws_url` is asked before every (re)connect,
+   * since after a server failed or was replaced another one plays the room.
+   */
   connect() {
+    if (this.closed) return;
+    api.getRoom(this.roomId)
+      .then((room) => { if (typeof room?.ws_url === 'string') this.wsUrl = room.ws_url; })
+      .catch(() => {}) // unreachable or gone: try the last known address; the socket says why
+      .finally(() => this.open());
+  }
+
+  open() {
     if (this.closed) return;
     this.onStatus(this.attempt === 0 ? 'connecting' : 'reconnecting');
     let opened = false;
     const ws = new WebSocket(this.url());
+    ws.binaryType = 'arraybuffer'; // a shot's `motion` message
     this.ws = ws;
     ws.onopen = () => { opened = true; this.attempt = 0; this.refusals = 0; };
     ws.onmessage = (ev) => {
       let msg;
-      try { msg = JSON.parse(ev.data); } catch { return; }
+      try {
+        msg = typeof ev.data === 'string' ? JSON.parse(ev.data) : decodeMotion(ev.data);
+      } catch { return; }
       if (msg && typeof msg === 'object') {
         if (msg.type === 'welcome') this.onStatus('open');
         this.onMessage(msg);

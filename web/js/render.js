@@ -275,8 +275,10 @@ export function drawSinking(ctx, view, sprites, sink, now, scaleToCss) {
  * @param {Table} table
  * @param {Vec} cue
  * @param {import('./geometry.js').Guide} guide
+ * @param {Vec | null} [objectEnd] where the object ball's line ends (`objectPath`): at the
+ *   rail, a ball or the pocket it drops in; without it a short stub is drawn
  */
-export function drawGuide(ctx, view, table, cue, guide) {
+export function drawGuide(ctx, view, table, cue, guide, objectEnd = null) {
   const s = view.scale;
   const r = table.ball_radius * s;
   const [cx, cy] = view.toScreen(cue[0], cue[1]);
@@ -311,7 +313,8 @@ export function drawGuide(ctx, view, table, cue, guide) {
     const [hx, hy] = [guide.contact[0] + guide.objectDir[0] * 2 * table.ball_radius,
       guide.contact[1] + guide.objectDir[1] * 2 * table.ball_radius];
     const [ox, oy] = view.toScreen(hx, hy);
-    const [ex, ey] = view.toScreen(hx + guide.objectDir[0] * 0.3, hy + guide.objectDir[1] * 0.3);
+    const [ex, ey] = objectEnd ? view.toScreen(objectEnd[0], objectEnd[1])
+      : view.toScreen(hx + guide.objectDir[0] * 0.15, hy + guide.objectDir[1] * 0.15);
     ctx.lineWidth = Math.max(1.5, s * 0.004);
     ctx.strokeStyle = 'rgba(255,230,120,0.9)';
     ctx.beginPath();
@@ -467,5 +470,31 @@ export function drawPowerMeter(ctx, view, cue, power) {
   ctx.fillRect(left, top + h * (1 - power), w, h * power);
   ctx.strokeStyle = 'rgba(255,255,255,0.6)';
   ctx.strokeRect(left, top, w, h);
+  ctx.restore();
+}
+
+/**
+ * The shot clock's last seconds: a red ring around the cue ball that empties as time runs
+ * out and pulses, so the shooter sees it where they look.
+ * @param {Ctx} ctx
+ * @param {View} view
+ * @param {Table} table
+ * @param {Vec} cue
+ * @param {number} left share of the urgent seconds left, 0..1
+ * @param {number} pulse 0..1
+ */
+export function drawClockRing(ctx, view, table, cue, left, pulse) {
+  const [x, y] = view.toScreen(cue[0], cue[1]);
+  const r = table.ball_radius * view.scale * 2.1;
+  ctx.save();
+  ctx.lineWidth = Math.max(3, view.scale * 0.008);
+  ctx.strokeStyle = 'rgba(0,0,0,0.45)';
+  ctx.beginPath();
+  ctx.arc(x, y, r, 0, Math.PI * 2);
+  ctx.stroke();
+  ctx.strokeStyle = `rgba(248,80,80,${0.7 + 0.3 * pulse})`;
+  ctx.beginPath();
+  ctx.arc(x, y, r, -Math.PI / 2, -Math.PI / 2 + Math.PI * 2 * Math.max(0, Math.min(1, left)));
+  ctx.stroke();
   ctx.restore();
 }

@@ -1,13 +1,16 @@
 /**
  * Which screen a page address shows: `/` the lobby, `/r/{room_id}` a table (playing or
- * watching), `/m/{match_id}` a finished match replayed. Anything else falls back to the
+ * watching), `/m/{match_id}` a finished match replayed, `/profile` your profile,
+ * `/p/{player_id}` anyone's, `/leaderboard` the ranking. Anything else falls back to the
  * lobby. Pure, so the routing is tested without a browser.
  */
 
 /**
  * @typedef {{screen: 'lobby'}
  *   | {screen: 'table', roomId: string}
- *   | {screen: 'replay', matchId: string}} Route
+ *   | {screen: 'replay', matchId: string}
+ *   | {screen: 'profile', playerId: string | null}
+ *   | {screen: 'leaderboard'}} Route
  */
 
 /**
@@ -15,6 +18,10 @@
  * @returns {Route}
  */
 export function routeOf(pathname) {
+  if (/^\/profile\/?$/.test(pathname)) return { screen: 'profile', playerId: null };
+  const player = pathname.match(/^\/p\/([A-Za-z0-9_-]+)\/?$/);
+  if (player) return { screen: 'profile', playerId: player[1] };
+  if (/^\/leaderboard\/?$/.test(pathname)) return { screen: 'leaderboard' };
   const room = pathname.match(/^\/r\/([A-Za-z0-9_-]+)\/?$/);
   if (room) return { screen: 'table', roomId: room[1] };
   const match = pathname.match(/^\/m\/([^/]+)\/?$/);

@@ -12,21 +12,31 @@
  *
  * At draw time the cel is rotated to the ball's direction of travel; the server streams
  * which cel to show, so a rolling ball turns and a stopped ball stops turning.
+ *
+ * The balls are designed for a view from above, as a player reads a real table: a stripe's
+ * band runs along the direction of roll (around the roll axis), so whatever the cel, the
+ * band crosses the ball from above and its white caps stay at the sides: a striped ball is
+ * never a white disc that reads as a second cue ball. The number sits on the band four
+ * times, a quarter turn apart, so one number disc always faces up (on a solid too).
  */
 
 import { ballColor, isStripe, CUE } from './balls.js';
 
 export const CELS = 16;
 const NUMBER_ANGLE = 0.5; // angular radius of the number disc (rad)
-const STRIPE_HALF = 0.5; // |b . S| below this is the coloured band
+export const STRIPE_HALF = 0.5; // |b . S| below this is the coloured band
 const DOT_ANGLE = 0.13; // the cue ball's red dots
-const TILT = 0.3; // the number pole leans towards the sprite's +y so it shows more often
+const TILT = 0.3; // the cue ball's dots lean off the axes so they show as it rolls
 
-const P = [0, Math.sin(TILT), Math.cos(TILT)]; // number pole (body frame)
-const E1 = [1, 0, 0]; // tangent basis at the pole: decal x
-const E2 = [0, Math.cos(TILT), -Math.sin(TILT)]; // decal y (down the sprite)
-const S = [1, 0, 0]; // stripe axis: the band holds both number poles
-const CUE_DOTS = [P, [-P[0], -P[1], -P[2]], S, [-1, 0, 0], E2, [-E2[0], -E2[1], -E2[2]]];
+/** The roll axis (the sprite's v, body frame): the stripe's band goes around it. */
+const S = [0, 1, 0];
+/** Number discs: on the band, a quarter turn apart; decal x = S x pole, decal y = S. */
+const NUMBER_POLES = [[0, 0, 1], [1, 0, 0], [0, 0, -1], [-1, 0, 0]].map((d) => ({
+  pole: d, e1: [S[1] * d[2] - S[2] * d[1], S[2] * d[0] - S[0] * d[2], S[0] * d[1] - S[1] * d[0]],
+}));
+const P = [0, Math.sin(TILT), Math.cos(TILT)];
+const E2 = [0, Math.cos(TILT), -Math.sin(TILT)];
+const CUE_DOTS = [P, [-P[0], -P[1], -P[2]], [1, 0, 0], [-1, 0, 0], E2, [-E2[0], -E2[1], -E2[2]]];
 
 /** @typedef {number[]} Vec3 */
 /** @typedef {HTMLCanvasElement | OffscreenCanvas} AnyCanvas */
@@ -83,9 +93,9 @@ export function surfaceAt(id, b) {
     return { color: hexToRgb(ballColor(0)), decal: null };
   }
   const sinA = Math.sin(NUMBER_ANGLE);
-  for (const sign of [1, -1]) {
-    if (sign * dot3(b, P) > Math.cos(NUMBER_ANGLE)) {
-      return { color: [250, 248, 240], decal: [(sign * dot3(b, E1)) / sinA, dot3(b, E2) / sinA] };
+  for (const { pole, e1 } of NUMBER_POLES) {
+    if (dot3(b, pole) > Math.cos(NUMBER_ANGLE)) {
+      return { color: [250, 248, 240], decal: [dot3(b, e1) / sinA, dot3(b, S) / sinA] };
     }
   }
   if (isStripe(id) && Math.abs(dot3(b, S)) > STRIPE_HALF) {

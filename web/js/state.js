@@ -8,6 +8,7 @@
 
 import { groupBalls } from './balls.js';
 import { DEFAULT_LIMITS, DEFAULT_STREAM, readLimits, readStream } from './limits.js';
+import { base64Bytes, decodeMotion } from './track.js';
 
 const MM = 1000;
 
@@ -31,8 +32,9 @@ const MM = 1000;
  * @property {string} phase waiting | aiming | rolling | over
  * @property {any} table
  * @property {Ball[]} balls at rest
- * @property {number | null} shot id of the shot being streamed
- * @property {number} lastFrameTick
+ * @property {number | null} shot id of the shot being shown
+ * @property {{shot: number, t0: number, at: number} | null} rolling the shot a `state` said
+ *   was being shown, how far in (`t0`, seconds) and when that came (`at`, local time)
  * @property {any} clock {seat, remaining, limit, at}: `at` = local time the message came
  * @property {any[]} grace
  * @property {any} match
@@ -67,7 +69,7 @@ export function initialState({ roomId = null, name = '', stream = DEFAULT_STREAM
     table: null,
     balls: [],
     shot: null,
-    lastFrameTick: -1,
+    rolling: null,
     clock: null,
     grace: [],
     match: null,
@@ -88,7 +90,7 @@ export function decodeBalls(list) {
   return (list ?? []).map(([id, x, y, cel]) => ({ id, x: x / MM, y: y / MM, cel }));
 }
 
-const SEQUENCED = new Set(['state', 'frame', 'event', 'shot_result', 'chat', 'presence']);
+const SEQUENCED = new Set(['state', 'motion', 'shot_result', 'chat', 'presence']);
 const SYNC_COOLDOWN = 1.0; // seconds between two sync requests
 
 /**
@@ -107,7 +109,7 @@ export function checkSeq(lastSeq, msg) {
 
 /**
  * @typedef {{kind: string} & Record<string, any>} Effect what the shell must do
- *   (`sync`, `rest`, `shot`, `frame`, `sound`, `result`; see reduce)
+ *   (`sync`, `rest`, `shot`, `motion`, `result`; see reduce)
  */
 
 /**
@@ -147,50 +149,41 @@ export function reduce(state, msg, now = 0) {
       const said = [s.match?.last_outcome?.message, s.match?.notice].filter(Boolean);
       if (said.length) s.outcome = said.join(' ');
       if (s.phase === 'rolling' && msg.shot) {
+        // A shot is being shown (we joined or came back during it): its `motion` follows,
+        // to be played from this tick on, plus the time since.
+        const t0 = msg.shot.tick / s.stream.tick_hz;
+        s.rolling = { shot: msg.shot.id, t0, at: now };
         if (s.shot !== msg.shot.id) {
           s.shot = msg.shot.id;
-          s.lastFrameTick = -1;
-          effects.push({ kind: 'shot', shot: msg.shot.id, tick: msg.shot.tick,
-            t0: msg.shot.tick / s.stream.tick_hz, balls: s.balls });
+          effects.push({ kind: 'shot', shot: msg.shot.id, tick: msg.shot.tick, t0,
+            balls: s.balls });
         }
       } else {
         s.shot = null;
+        s.rolling = null;
         effects.push({ kind: 'rest', balls: s.balls });
       }
       if (s.phase !== 'aiming') s.aim = null;
       break;
     }
-    case 'frame': {
-      if (msg.shot !== s.shot) {
-        s.shot = msg.shot;
-        s.lastFrameTick = -1;
-        s.phase = 'rolling';
-        s.aim = null;
-        effects.push({ kind: 'shot', shot: msg.shot, tick: 0, t0: 0, balls: null });
+    case 'motion': {
+      // A shot's whole motion (binary, decoded by net.js; a replay's comes in base64).
+      let motion;
+      try {
+        motion = msg.tracks ? msg : decodeMotion(base64Bytes(msg.data));
+      } catch {
+        break; // not a motion this client can read: the next `state` shows the table
       }
-      if (msg.tick <= s.lastFrameTick) break; // stale
-      s.lastFrameTick = msg.tick;
+      const joined = s.rolling && s.rolling.shot === motion.shot;
+      const t0 = joined && s.rolling ? s.rolling.t0 + (now - s.rolling.at) : 0;
+      s.shot = motion.shot;
+      s.rolling = null;
+      s.phase = 'rolling';
+      s.aim = null;
       s.clock = null;
-      const balls = decodeBalls(msg.b);
-      effects.push({ kind: 'frame', t: msg.tick / s.stream.tick_hz, balls, last: !!msg.last });
-      if (msg.last) s.balls = balls;
-      // The next frames, sent early in the same message (fewer messages for the server):
-      // played at their own ticks like any other frame.
-      for (const early of msg.ahead ?? []) {
-        if (early.tick <= s.lastFrameTick) continue;
-        s.lastFrameTick = early.tick;
-        effects.push({ kind: 'frame', t: early.tick / s.stream.tick_hz,
-          balls: decodeBalls(early.b), last: false, ahead: true });
-      }
+      effects.push({ kind: 'motion', motion, t0 });
       break;
     }
-    case 'event':
-      // Sounds close together come in one message (`also`): each plays at its own `t`.
-      for (const e of [msg, ...(msg.also ?? [])]) {
-        effects.push({ kind: 'sound', sound: e.kind, speed: e.speed ?? 0, t: e.t ?? 0,
-          shot: msg.shot });
-      }
-      break;
     case 'shot_result': {
       s.lastResult = msg;
       s.outcome = msg.outcome?.message ?? s.outcome;

@@ -4,11 +4,16 @@
  * Written to only touch the DOM when a shown value changes.
  */
 
-import { ballColor, isStripe } from './balls.js';
+import { ballColor, isStripe, groupBalls } from './balls.js';
 import {
   playerName, turnSeat, isMyTurn, clockRemaining, groupOf, ballsLeft, pocketedBalls,
   scoreText, winnerName,
 } from './state.js';
+import { tidyOutcome, decisionLabel, countdown } from './words.js';
+import { icon } from './icons.js';
+
+/** Seconds left on the shot clock from which it turns urgent (colour, ring, tick). */
+export const URGENT_AT = 10;
 
 /**
  * The element with this id; index.html has every id the screens use, so a missing one is
@@ -76,6 +81,8 @@ export function miniBall(id) {
   el.style.background = isStripe(id)
     ? `linear-gradient(#f7f3e6 0 22%, ${c} 22% 78%, #f7f3e6 78%)` : c;
   el.textContent = id ? String(id) : '';
+  if (isStripe(id)) el.classList.add('stripe');
+  if (id === 8) el.classList.add('eight');
   if (id === 8 || [2, 4, 7].includes(id)) el.style.color = '#fff';
   el.title = `Ball ${id}`;
   el.dataset.ball = String(id);
@@ -114,7 +121,7 @@ export function renderRooms(list, rooms, { onJoin, onWatch }) {
     const players = seats.map((p) => p ?? 'free seat').join(' vs ');
     const title = document.createElement('div');
     title.textContent = `${GAME_NAMES[r.game] ?? r.game}`
-      + (r.game !== 'practice' ? ` · race to ${r.race_to}` : '');
+      + (r.game !== 'practice' ? ` · race to ${r.race_to}` : '') + (r.ranked ? ' · ranked' : '');
     const who = document.createElement('div');
     who.className = 'who';
     who.textContent = `${players}${r.spectators ? ` · ${r.spectators} watching` : ''}`;
@@ -188,15 +195,28 @@ export function renderHistory(list, matches) {
     const who = document.createElement('div');
     who.className = 'who';
     const when = m.finished_at ? new Date(m.finished_at * 1000).toLocaleString() : '';
-    who.textContent = [GAME_NAMES[m.game] ?? m.game, m.winner_name ? `${m.winner_name} won` : '',
-      `${m.shots} shots`, when].filter(Boolean).join(' · ');
+    const abandoned = m.status === 'abandoned';
+    li.dataset.status = m.status ?? 'finished';
+    who.textContent = [GAME_NAMES[m.game] ?? m.game,
+      abandoned ? 'abandoned' : m.winner_name ? `${m.winner_name} won` : '',
+      m.shots ? `${m.shots} shot${m.shots === 1 ? '' : 's'}` : 'no shot played', when]
+      .filter(Boolean).join(' · ');
     what.append(title, who);
-    const watch = document.createElement('a');
-    watch.href = `/m/${m.id}`;
-    watch.className = 'button';
-    watch.textContent = 'Watch';
-    watch.dataset.testid = 'watch-match';
-    li.append(what, watch);
+    li.append(what);
+    if (abandoned) {
+      const tag = document.createElement('span');
+      tag.className = 'tag abandoned';
+      tag.textContent = 'abandoned';
+      li.append(tag);
+    }
+    if (m.shots > 0) {
+      const watch = document.createElement('a');
+      watch.href = `/m/${m.id}`;
+      watch.className = 'button';
+      watch.textContent = 'Watch';
+      watch.dataset.testid = 'watch-match';
+      li.append(watch);
+    }
     return li;
   });
   list.replaceChildren(...items);
@@ -217,8 +237,11 @@ export function renderHud(state, now) {
     const exists = seat < (state.room?.seats ?? 2);
     setHidden(el, !exists);
     const name = p?.name ?? (exists ? 'waiting for a player…' : '');
-    setText(el.querySelector('.pname'), name + (seat === mySeat ? ' (you)' : ''));
+    const pname = el.querySelector('.pname');
+    setText(pname, name + (seat === mySeat ? ' (you)' : ''));
+    if (pname instanceof HTMLElement && pname.title !== name) pname.title = name;
     el.classList.toggle('connected', !!p?.connected);
+    el.classList.toggle('absent', !!p && !p.connected);
     el.classList.toggle('turn', turn === seat);
     const group = groupOf(state, seat);
     setText(el.querySelector('.group'), group ?? '');
@@ -228,8 +251,11 @@ export function renderHud(state, now) {
   const turnEl = $('turn');
   let text = 'Connecting…';
   const winner = winnerName(state);
+  const left = clockRemaining(state, now);
   if (state.phase === 'waiting') {
     text = 'Waiting for an opponent…';
+  } else if (state.room?.abandoned) {
+    text = 'Match abandoned: both players left';
   } else if (state.phase === 'over' || winner) {
     text = winner ? `${winner} wins the match` : 'Match over';
   } else if (state.phase === 'rolling') {
@@ -237,23 +263,36 @@ export function renderHud(state, now) {
     text = shooter ? `${shooter} shoots…` : 'Balls rolling…';
   } else if (turn !== null) {
     const who = turn === mySeat ? 'Your turn' : `${playerName(state, turn) ?? 'Player'}'s turn`;
-    const left = clockRemaining(state, now);
     const extras = [];
-    if (m?.decision) extras.push(m.decision.prompt ?? 'decide');
+    if (m?.decision) extras.push(turn === mySeat ? 'your choice' : 'choosing');
     else if (m?.ball_in_hand) extras.push('ball in hand');
     if (m?.requires_call && m?.called_pocket == null) extras.push('call a pocket for the 8');
-    text = `${who}${extras.length ? ` · ${extras.join(' · ')}` : ''}`
-      + (left !== null ? ` · ${Math.ceil(left)} s` : '');
+    if (m?.breaking && !m?.decision) extras.push('break');
+    text = `${who}${extras.length ? ` · ${extras.join(' · ')}` : ''}`;
   }
   setText(turnEl, text);
   turnEl.dataset.seat = turn === null ? '' : String(turn);
   turnEl.dataset.phase = state.phase;
   turnEl.classList.toggle('mine', isMyTurn(state));
 
+  // The shot clock: a badge with a ring that empties, urgent in the last seconds. (On a
+  // room's first break more than `limit` is left: the ring stays full until it is not.)
+  const clockEl = $('shot-clock');
+  setHidden(clockEl, left === null);
+  const urgent = left !== null && left <= URGENT_AT;
+  clockEl.classList.toggle('urgent', urgent);
+  clockEl.dataset.urgent = String(urgent);
+  const limit = state.clock?.limit || state.room?.shot_clock || 1;
+  const frac = left === null ? 1 : Math.max(0, Math.min(1, left / limit));
+  clockEl.style.setProperty('--left', frac.toFixed(3));
+  setText(clockEl.querySelector('.secs'), left !== null ? countdown(left) : '');
+
   setText($('score'), scoreText(state));
-  setText($('outcome'), state.outcome || (state.phase === 'waiting'
-    ? 'Send the link to a friend to start.' : ''));
-  setBalls($('pocketed'), pocketedBalls(state));
+  setText($('outcome'), state.room?.abandoned
+    ? 'Both players left the table and nobody came back: the match was abandoned.'
+    : tidyOutcome(state.outcome) || (state.phase === 'waiting'
+      ? 'Send the link to a friend to start.' : ''));
+  renderTray(state);
 
   const conn = $('connection');
   setText(conn, state.connection);
@@ -262,7 +301,7 @@ export function renderHud(state, now) {
 
   const isPlayer = state.me.role === 'player';
   const practice = m?.kind === 'practice' || state.room?.game === 'practice';
-  setHidden($('rematch'), !(isPlayer && state.phase === 'over'));
+  renderRematch(state);
   setHidden($('concede'), !(isPlayer && !practice && (state.phase === 'aiming'
     || state.phase === 'rolling')));
   setHidden($('rerack'), !(isPlayer && practice));
@@ -270,7 +309,12 @@ export function renderHud(state, now) {
 
   const banner = $('banner');
   setHidden(banner, !winner);
-  if (winner) setText(banner, `🏆 ${winner} wins!`);
+  if (winner && banner.dataset.winner !== winner) {
+    banner.dataset.winner = winner;
+    const words = document.createElement('span');
+    words.textContent = `${winner} wins the match!`;
+    banner.replaceChildren(icon('trophy', 34), words);
+  }
 
   const error = state.error && now - state.error.at < 4 ? state.error.message : '';
   setText($('toast'), error);
@@ -278,7 +322,101 @@ export function renderHud(state, now) {
 }
 
 /**
- * The decision buttons (e.g. 9-ball push-out answer), shown to the seat that decides.
+ * Rematch: who asked, and the button that asks or accepts.
+ * @param {import('./state.js').RoomState} state
+ */
+function renderRematch(state) {
+  const button = $('rematch');
+  const info = $('rematch-state');
+  const over = state.phase === 'over' && !state.room?.abandoned;
+  const isPlayer = state.me.role === 'player' && state.me.seat !== null;
+  /** @type {number[]} */
+  const votes = over ? state.room?.rematch ?? [] : [];
+  const mine = isPlayer && votes.includes(/** @type {number} */ (state.me.seat));
+  const others = votes.filter((s) => s !== state.me.seat);
+  setHidden(button, !(isPlayer && over));
+  const label = mine ? 'Rematch asked' : others.length ? 'Accept rematch' : 'Rematch';
+  setText(button, label);
+  /** @type {HTMLButtonElement} */ (button).disabled = mine;
+  button.classList.toggle('primary', !mine && others.length > 0);
+  let text = '';
+  if (mine) {
+    const waiting = (state.room?.players ?? []).filter((/** @type {any} */ p) =>
+      p.seat !== state.me.seat && !votes.includes(p.seat)).map((/** @type {any} */ p) => p.name);
+    text = `You asked for a rematch. Waiting for ${waiting.join(' and ') || 'the others'}…`;
+  } else if (others.length) {
+    const names = others.map((s) => playerName(state, s) ?? 'A player');
+    text = `${names.join(' and ')} ${isPlayer ? 'asks you for' : 'asks for'} a rematch.`;
+  }
+  setText(info, text);
+  setHidden(info, !text);
+  info.dataset.votes = votes.join(',');
+}
+
+/**
+ * The pocketed balls, per player once the groups are decided (8-ball), the 8 apart.
+ * @param {import('./state.js').RoomState} state
+ */
+export function renderTray(state) {
+  const el = $('pocketed');
+  const down = pocketedBalls(state);
+  const groups = [0, 1].map((seat) => groupOf(state, seat));
+  /** @type {{label: string, seat: string, ids: number[]}[]} */
+  const rows = [];
+  if (groups[0] || groups[1]) {
+    for (const seat of [0, 1]) {
+      const mine = groupBalls(groups[seat]);
+      rows.push({ label: `${playerName(state, seat) ?? `Player ${seat + 1}`} · ${groups[seat]}`,
+        seat: String(seat), ids: down.filter((id) => mine.includes(id)) });
+    }
+    if (down.includes(8)) rows.push({ label: 'The 8', seat: '', ids: [8] });
+  } else if (down.length) {
+    rows.push({ label: '', seat: '', ids: down });
+  }
+  const key = JSON.stringify(rows);
+  if (el.dataset.key === key) return;
+  el.dataset.key = key;
+  el.replaceChildren(...rows.map((r) => {
+    const row = document.createElement('div');
+    row.className = 'tray-row';
+    if (r.seat) row.dataset.seat = r.seat;
+    if (r.label) {
+      const label = document.createElement('span');
+      label.className = 'tray-label';
+      label.textContent = r.label;
+      row.append(label);
+    }
+    const balls = document.createElement('span');
+    balls.className = 'tray-balls';
+    balls.replaceChildren(...r.ids.map(miniBall));
+    row.append(balls);
+    return row;
+  }));
+}
+
+/**
+ * A banner while a player is away: who, and the seconds left before they forfeit the frame.
+ * @param {import('./state.js').RoomState} state
+ * @param {number} now
+ * @param {number} graceAt local time the `grace` list came
+ */
+export function renderAway(state, now, graceAt) {
+  const el = $('away');
+  const running = state.room?.abandoned || state.phase === 'over' ? [] : state.grace ?? [];
+  const lines = running.filter((g) => g.seat !== state.me.seat || state.me.role !== 'player')
+    .map((g) => {
+      const name = playerName(state, g.seat) ?? `Player ${g.seat + 1}`;
+      const left = countdown(g.remaining - (now - graceAt));
+      return `${name} left the table · ${left} to come back before forfeiting the frame`;
+    });
+  const text = lines.join('\n');
+  setText(el, text);
+  setHidden(el, !text);
+}
+
+/**
+ * The decision buttons (e.g. 9-ball push-out answer), shown to the seat that decides, with
+ * the question; the others read who is choosing.
  * @param {import('./state.js').RoomState} state
  * @param {(option: string) => void} onDecide
  */
@@ -291,9 +429,14 @@ export function renderDecision(state, onDecide) {
   if (el.dataset.key === key) return;
   el.dataset.key = key;
   if (!mine) { el.replaceChildren(); return; }
-  el.replaceChildren(...d.options.map((/** @type {string} */ opt) => {
+  const prompt = document.createElement('div');
+  prompt.className = 'prompt';
+  prompt.textContent = d.prompt ?? 'Your choice:';
+  el.replaceChildren(prompt, ...d.options.map((/** @type {string} */ opt, /** @type {number} */ i) => {
     const b = document.createElement('button');
-    b.textContent = opt.replace(/_/g, ' ');
+    b.textContent = decisionLabel(opt);
+    b.dataset.option = opt;
+    if (i === 0) b.className = 'primary';
     b.addEventListener('click', () => onDecide(opt));
     return b;
   }));

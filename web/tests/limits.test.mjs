@@ -69,17 +69,6 @@ test('welcome: limits and tick rate come from the server; without them the defau
   assert.equal(s2.stream.tick_hz, 60);
 });
 
-test("frame times follow the server's tick rate", () => {
-  const welcome = (/** @type {number} */ hz) => ({ type: 'welcome', seat: 0, role: 'player', seq: 1, tick_hz: hz });
-  const frameT = (/** @type {import('../js/state.js').RoomState} */ start) => reduce(start, { type: 'frame', seq: 2, shot: 3, tick: 30, b: [],
-    ahead: [{ tick: 36, b: [] }] }).effects.filter((e) => e.kind === 'frame').map((e) => e.t);
-  assert.deepEqual(frameT(reduce(initialState(), welcome(120)).state), [0.25, 0.3]);
-  assert.deepEqual(frameT(reduce(initialState(), welcome(60)).state), [0.5, 0.6]);
-  // A replay has no welcome: its match detail's `stream` sets the rate.
-  assert.deepEqual(frameT(initialState({ stream: readStream({ tick_hz: 240 }) })),
-    [0.125, 0.15]);
-});
-
 test('joining a shot under way starts at its tick in seconds of the server clock', () => {
   const s = reduce(initialState(), { type: 'welcome', seat: 0, role: 'player', seq: 1,
     tick_hz: 60 }).state;

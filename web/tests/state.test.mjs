@@ -4,6 +4,8 @@ import {
   initialState, reduce, checkSeq, decodeBalls, isMyTurn, turnSeat, clockRemaining, ballsLeft,
   pocketedBalls, scoreText, winnerName,
 } from '../js/state.js';
+import { decodeMotion } from '../js/track.js';
+import { encodeMotion } from './motion.mjs';
 
 const room = {
   room_id: 'abc', game: 'eight_ball', race_to: 3, seats: 2, status: 'playing',
@@ -60,74 +62,53 @@ test('a spectator never has the turn', () => {
   assert.equal(isMyTurn(s), false);
 });
 
-test('frames of a new shot start playback, in seconds from the tick', () => {
+test('a shot`s motion starts playback at its strike; the table rolls', () => {
+  const motion = decodeMotion(encodeMotion({ seq: 2, shot: 7, duration: 0.1,
+    tracks: [{ id: 0, t: [0, 0.1], x: [0.635, 0.76], y: [0.635, 0.635] }] }));
   const { s, effects } = run([
     [{ type: 'welcome', seat: 1, role: 'player', seq: 1, tick_hz: 120 }],
     [stateMsg(1)],
-    [{ type: 'frame', seq: 2, shot: 7, tick: 6, b: [[0, 700, 635, 2]] }],
-    [{ type: 'frame', seq: 3, shot: 7, tick: 12, b: [[0, 760, 635, 5]], last: true }],
+    [motion, 5],
   ]);
-  const kinds = effects.map((e) => e.kind);
-  assert.deepEqual(kinds, ['rest', 'shot', 'frame', 'frame']);
-  assert.equal(effects[2].t, 0.05);
-  assert.equal(effects[3].last, true);
+  assert.deepEqual(effects.map((e) => e.kind), ['rest', 'motion']);
+  assert.equal(effects[1].motion, motion);
+  assert.equal(effects[1].t0, 0);
   assert.equal(s.phase, 'rolling');
-  assert.equal(s.balls[0].x, 0.76, 'the last frame is the table at rest');
+  assert.equal(s.shot, 7);
   assert.equal(s.clock, null);
 });
 
-test('frames sent ahead in a message are played at their own ticks, once', () => {
-  const { s, effects } = run([
-    [{ type: 'welcome', seat: 1, role: 'player', seq: 1, tick_hz: 120 }],
-    [stateMsg(1)],
-    [{ type: 'frame', seq: 2, shot: 7, tick: 6, b: [[0, 700, 635, 2]],
-      ahead: [{ tick: 12, b: [[0, 760, 635, 5]] }] }],
-    [{ type: 'frame', seq: 3, shot: 7, tick: 12, b: [[0, 760, 635, 5]] }],
-    [{ type: 'frame', seq: 4, shot: 7, tick: 18, b: [[0, 800, 635, 6]], last: true }],
-  ]);
-  const frames = effects.filter((e) => e.kind === 'frame');
-  assert.deepEqual(frames.map((f) => f.t), [0.05, 0.1, 0.15]);
-  assert.equal(frames[1].balls[0].x, 0.76);
-  assert.deepEqual(frames.map((f) => f.last), [false, false, true]);
-  assert.equal(s.balls[0].x, 0.8);
-});
-
-test('a stale or repeated frame is dropped', () => {
-  const { effects } = run([
-    [stateMsg(1)],
-    [{ type: 'frame', seq: 2, shot: 7, tick: 12, b: [] }],
-    [{ type: 'frame', seq: 3, shot: 7, tick: 6, b: [] }],
-  ]);
-  assert.equal(effects.filter((e) => e.kind === 'frame').length, 1);
+test('a replay`s motion line carries the same bytes in base64', () => {
+  const bytes = encodeMotion({ seq: 1, shot: 3, duration: 0.5,
+    tracks: [{ id: 0, t: [0, 0.5], x: [0.5, 1], y: [0.5, 0.5] }] });
+  const data = Buffer.from(bytes).toString('base64');
+  const { effects } = run([[{ type: 'motion', seq: 1, shot: 3, data }]]);
+  assert.equal(effects[0].kind, 'motion');
+  assert.deepEqual(effects[0].motion, decodeMotion(bytes));
+  const bad = run([[{ type: 'motion', seq: 1, shot: 3, data: 'AAAA' }]]);
+  assert.deepEqual(bad.effects, [], 'an unreadable motion changes nothing');
 });
 
 test('a sequence gap asks for a sync (once per cooldown); a state resets the count', () => {
-  assert.deepEqual(checkSeq(5, { type: 'frame', seq: 6 }), [6, false]);
-  assert.deepEqual(checkSeq(5, { type: 'frame', seq: 8 }), [8, true]);
+  assert.deepEqual(checkSeq(5, { type: 'motion', seq: 6 }), [6, false]);
+  assert.deepEqual(checkSeq(5, { type: 'motion', seq: 8 }), [8, true]);
   assert.deepEqual(checkSeq(5, { type: 'aim' }), [5, false]);
   assert.deepEqual(checkSeq(9, { type: 'state', seq: 3 }), [3, false]);
   const { effects } = run([
     [stateMsg(10), 0],
-    [{ type: 'frame', seq: 13, shot: 1, tick: 6, b: [] }, 1.0],
-    [{ type: 'frame', seq: 15, shot: 1, tick: 12, b: [] }, 1.2],
-    [{ type: 'frame', seq: 18, shot: 1, tick: 18, b: [] }, 2.5],
+    [{ type: 'chat', seq: 13, seat: 0, name: 'Ana', text: 'a' }, 1.0],
+    [{ type: 'chat', seq: 15, seat: 0, name: 'Ana', text: 'b' }, 1.2],
+    [{ type: 'chat', seq: 18, seat: 0, name: 'Ana', text: 'c' }, 2.5],
   ]);
   assert.equal(effects.filter((e) => e.kind === 'sync').length, 2);
 });
 
-test('events become sounds with their speed and time; aim is relayed', () => {
-  const { s, effects } = run([
+test('aim is relayed', () => {
+  const { s } = run([
     [stateMsg(1)],
     [{ type: 'aim', seat: 1, angle: 1.5, power: 0.3, tip: [0, 0.1] }, 3],
-    [{ type: 'event', seq: 2, shot: 3, tick: 10, t: 0.0833, kind: 'ball', ids: [0, 1],
-      speed: 3.4, target: -1 }],
   ]);
   assert.deepEqual(s.aim, { seat: 1, angle: 1.5, power: 0.3, tip: [0, 0.1], at: 3 });
-  const sound = effects.find((e) => e.kind === 'sound');
-  assert.ok(sound);
-  assert.equal(sound.sound, 'ball');
-  assert.equal(sound.speed, 3.4);
-  assert.equal(sound.t, 0.0833);
 });
 
 test('shot_result sets the outcome in words and the score', () => {
@@ -172,12 +153,19 @@ test('chat keeps the last 50 lines; errors are kept with their time', () => {
   assert.equal(s.error.at, 7);
 });
 
-test('joining while a shot is shown starts playback at the state`s tick', () => {
-  const { effects } = run([[stateMsg(5, { phase: 'rolling', shot: { id: 4, seat: 0, tick: 120,
-    ticks: 700 }, clock: null })]]);
+test('joining while a shot is shown plays its motion from the state`s tick on', () => {
+  const motion = decodeMotion(encodeMotion({ seq: 2, shot: 4, duration: 6,
+    tracks: [{ id: 0, t: [0], x: [1], y: [0.5] }] }));
+  const { effects } = run([
+    [stateMsg(5, { phase: 'rolling', shot: { id: 4, seat: 0, tick: 120, ticks: 700 },
+      clock: null }), 10],
+    [motion, 10.25],
+  ]);
   assert.equal(effects[0].kind, 'shot');
   assert.equal(effects[0].tick, 120);
   assert.equal(effects[0].balls.length, 3);
+  assert.equal(effects[1].kind, 'motion');
+  assert.equal(effects[1].t0, 1.25, '1 s in when the state was sent, and 0.25 s since');
 });
 
 test('garbage messages change nothing', () => {
@@ -197,14 +185,3 @@ test('groups as the rules send them (a list by seat) and a notice beside the out
   assert.equal(s.outcome, 'Ben fouls. Ana declares a push out.');
 });
 
-test('an event message with `also` plays every sound at its own time', () => {
-  const { effects } = run([
-    [stateMsg(1)],
-    [{ type: 'event', seq: 2, shot: 7, tick: 1, t: 0.0, kind: 'strike', ids: [0], speed: 9,
-      target: -1, also: [{ tick: 10, t: 0.08, kind: 'ball', ids: [0, 1], speed: 8.5, target: -1 },
-        { tick: 20, t: 0.16, kind: 'cushion', ids: [3], speed: 2, target: 1 }] }],
-  ]);
-  const sounds = effects.filter((e) => e.kind === 'sound');
-  assert.deepEqual(sounds.map((e) => [e.sound, e.t, e.speed, e.shot]),
-    [['strike', 0, 9, 7], ['ball', 0.08, 8.5, 7], ['cushion', 0.16, 2, 7]]);
-});

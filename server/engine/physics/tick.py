@@ -35,6 +35,12 @@ from .resolve import ball_ball, cushion, jaw, pocket
 
 @njit(cache=True, inline="always")
 def _record(events, n_ev, time, kind, a, b, speed, target):
+    """Append an event row. A stalling cluster can write more rows in one tick than its
+    caller keeps free (its `rest` events are not counted against MAX_EVENTS_PER_TICK);
+    compiled code has no bounds check, so a full buffer drops the row instead of writing
+    past the end."""
+    if n_ev >= events.shape[0]:
+        return n_ev
     events[n_ev, 0] = time
     events[n_ev, 1] = kind
     events[n_ev, 2] = a

@@ -3,9 +3,11 @@
  * finished matches to watch again. Lists refresh every few seconds while the tab is shown.
  */
 
-import { api, memory } from '../net.js';
+import { api, memory, request } from '../net.js';
 import { DEFAULT_LIMITS, readLimits } from '../limits.js';
 import { $, $input, $select, applyInputLimits, renderRooms, renderHistory } from '../ui.js';
+import { mountPlayNow } from './playnow.js';
+import { players } from '../players.js';
 
 const REFRESH_EVERY = 3000; // ms between two refreshes of the lists
 const HISTORY_SHOWN = 10; // finished matches listed
@@ -28,9 +30,23 @@ export function startLobby() {
 
   const nameEl = $input('name');
   nameEl.value = memory.name();
+  mountPlayNow($('playnow'));
   nameEl.addEventListener('input', () => memory.setName(nameEl.value.trim()));
   /** @param {string} msg */
   const showError = (msg) => { $('lobby-error').textContent = msg; };
+  // Practice is one rack alone: no race, no clock to set.
+  const gameEl = $select('game');
+  const showGameOptions = () => {
+    const practice = gameEl.value === 'practice';
+    $input('race-to').disabled = practice;
+    $select('shot-clock-select').disabled = practice;
+    $select('opponent').disabled = practice;
+    // Ranked: two people at 8-ball or 9-ball (never practice, never the computer).
+    $input('ranked-table').disabled = practice || Boolean($select('opponent').value);
+  };
+  $select('opponent').addEventListener('change', showGameOptions);
+  gameEl.addEventListener('change', showGameOptions);
+  showGameOptions();
   const needName = () => {
     const name = nameEl.value.trim();
     if (!name) { showError('Enter your name first.'); nameEl.focus(); return null; }
@@ -40,9 +56,10 @@ export function startLobby() {
   /**
    * @param {string} roomId
    * @param {string} name
+   * @param {boolean} [ranked] the creator's agreement to their own ranked table
    */
-  const joinAndGo = async (roomId, name) => {
-    const seat = await api.join(roomId, name);
+  const joinAndGo = async (roomId, name, ranked = false) => {
+    const seat = await api.join(roomId, name, ranked);
     memory.setSeat(roomId, { seat: seat.seat, token: seat.token, name: seat.name });
     location.assign(`/r/${roomId}`);
   };
@@ -57,9 +74,14 @@ export function startLobby() {
       const opponent = $select('opponent').value || undefined;
       // A game against the computer is nobody else's to join: keep it out of the lobby.
       const listed = !$input('private-table').checked && !opponent;
-      const room = await api.createRoom($select('game').value, raceTo, undefined, listed,
-        opponent);
-      await joinAndGo(room.room_id, name);
+      const practice = $select('game').value === 'practice';
+      const shotClock = practice ? undefined : Number($select('shot-clock-select').value);
+      const ranked = !$input('ranked-table').disabled && $input('ranked-table').checked;
+      if (ranked) await players.me(); // a ranked table needs the creator's profile
+      const room = await api.createRoom($select('game').value, practice ? 1 : raceTo,
+        Number.isFinite(shotClock) ? shotClock : undefined, listed, practice ? undefined : opponent,
+        ranked);
+      await joinAndGo(room.room_id, name, ranked);
     } catch (e) { showError(errorText(e)); }
   });
   const refresh = async () => {
@@ -67,9 +89,12 @@ export function startLobby() {
       const { rooms } = await api.listRooms();
       /** @type {any[]} */
       const all = rooms;
-      const open = all.filter((r) => r.status !== 'finished' || r.spectators > 0);
+      // A finished table is nobody's to join: only tables waiting or in play are open.
+      const open = all.filter((r) => r.status !== 'finished');
       renderRooms($('rooms'), open, {
         onJoin: async (id) => {
+          // A ranked table asks for the player's agreement: its page's join dialog does.
+          if (open.some((r) => r.room_id === id && r.ranked)) { location.assign(`/r/${id}`); return; }
           const name = needName();
           if (!name) return;
           try { await joinAndGo(id, name); } catch (e) { showError(errorText(e)); refresh(); }
@@ -81,7 +106,7 @@ export function startLobby() {
   };
   const refreshHistory = async () => {
     try {
-      const { matches } = await api.finishedMatches(HISTORY_SHOWN);
+      const matches = await endedMatches(HISTORY_SHOWN);
       renderHistory($('history'), matches);
       $('no-history').hidden = matches.length > 0;
     } catch (e) { showError(`Cannot list finished matches: ${errorText(e)}`); }
@@ -89,6 +114,22 @@ export function startLobby() {
   refresh();
   refreshHistory();
   setInterval(() => { if (!document.hidden) { refresh(); refreshHistory(); } }, REFRESH_EVERY);
+}
+
+/**
+ * The newest matches that ended: finished ones with at least one shot to watch, and the
+ * abandoned ones (said so, never as a win), newest first.
+ * @param {number} limit
+ * @returns {Promise<any[]>}
+ */
+async function endedMatches(limit) {
+  const [finished, abandoned] = await Promise.all(['finished', 'abandoned'].map((status) =>
+    request('GET', `/api/matches?status=${status}&limit=${limit}`)));
+  /** @type {any[]} */
+  const all = [...finished.matches.filter((/** @type {any} */ m) => m.shots > 0),
+    ...abandoned.matches];
+  const when = (/** @type {any} */ m) => m.finished_at ?? m.started_at ?? 0;
+  return all.sort((a, b) => when(b) - when(a)).slice(0, limit);
 }
 
 /** @param {unknown} e */

@@ -15,7 +15,8 @@ import { initialState, reduce, decodeBalls } from '../state.js';
 import { readStream } from '../limits.js';
 import { ShotPlayback } from '../playback.js';
 import { CELS } from '../sprites.js';
-import { drawBalls, drawSinking } from '../render.js';
+import { drawBalls, drawSinking, drawCue } from '../render.js';
+import { DEFAULT_LIMITS } from '../limits.js';
 import { TableAudio } from '../audio.js';
 import { TableCanvas } from '../tablecanvas.js';
 import { $, $select, bindMute, setText, matchLine } from '../ui.js';
@@ -45,6 +46,7 @@ export function startReplay(matchId) {
   /** @type {number | null} when the current shot finished playing */
   let restSince = null;
   let state = initialState({ stream });
+  let struck = false; // the shot shown has started moving (the cue is drawn until then)
 
   /** @param {string} text */
   const showError = (text) => {
@@ -97,6 +99,10 @@ export function startReplay(matchId) {
     restSince = null;
     playback.reset(decodeBalls(shot.b));
     setText($('replay-shot'), `shot ${index + 1} / ${match.shots.length}`);
+    const players = match.players ?? [];
+    setText($('replay-shooter'), `${players[shot.seat] ?? `Player ${shot.seat + 1}`} to play`);
+    setText($('replay-at'), `game ${shot.game} · ${scoreBefore(match, shot)}`);
+    struck = false;
     setText($('replay-outcome'), '');
     if (playing) play(shot);
   }
@@ -129,7 +135,10 @@ export function startReplay(matchId) {
     }
     const res = reduce(state, msg, now);
     state = res.state;
-    for (const e of res.effects) playback.apply(e, now);
+    for (const e of res.effects) {
+      if (e.kind === 'frame') struck = true;
+      playback.apply(e, now);
+    }
   }
 
   /**
@@ -156,6 +165,14 @@ export function startReplay(matchId) {
     if (!sprites) return;
     drawBalls(ctx, view, sprites, playback.balls, 1 / dpr);
     for (const s of playback.sinking.list) drawSinking(ctx, view, sprites, s, now, 1 / dpr);
+    // The cue, as it was lined up for the shot, until the cue ball moves.
+    const shot = match?.shots[index];
+    const cueBall = playback.balls.get(0);
+    struck = struck || playback.framesSeen > 0;
+    if (!struck && shot?.shot && cueBall) {
+      const power = Math.min(1, (shot.shot.speed ?? 0) / DEFAULT_LIMITS.max_speed);
+      drawCue(ctx, view, match.geometry, [cueBall.x, cueBall.y], shot.shot.angle, power * 0.5);
+    }
   }
 
   playButton.addEventListener('click', () => {
@@ -178,6 +195,18 @@ export function startReplay(matchId) {
   startLoop((dt, now) => { update(dt, now); draw(now); });
   load();
 
+  /**
+   * "Ana 1 – 0 Ben": the score when stored shot `shot` was played (games won before its game).
+   * @param {any} m the match
+   * @param {any} shot
+   */
+  function scoreBefore(m, shot) {
+    const players = m.players ?? [];
+    const won = [0, 1].map((seat) => (m.games ?? []).filter((/** @type {any} */ g) =>
+      g.n < shot.game && g.winner === seat).length);
+    return `${players[0] ?? '?'} ${won[0]} – ${won[1]} ${players[1] ?? '?'}`;
+  }
+
   // Read-only hook for automated tests and debugging.
   /** @type {any} */ (window).__replay = {
     get match() { return match; },
@@ -188,5 +217,6 @@ export function startReplay(matchId) {
       return [...playback.balls].map(([id, b]) => ({ id, x: b.x, y: b.y, cel: b.cel }));
     },
     get ready() { return !!(surface.view && surface.sprites); },
+    get cueDrawn() { return !struck; },
   };
 }

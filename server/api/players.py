@@ -1,0 +1,345 @@
+"""Players over HTTP: the profile made on a first visit (a secret in an HttpOnly cookie),
+renaming it, anyone's public profile, the leaderboard per game, and Play now (join the
+queue, long-poll for the room, leave, take the computer instead). See docs/protocol.md,
+"Players, Play now and the leaderboard"."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Annotated, Any
+
+from fastapi import APIRouter, Depends, FastAPI, HTTPException, Path, Query, Request, Response
+from starlette.requests import HTTPConnection
+
+from server.cluster import Cluster
+from server.players import (
+    RANKED_KINDS,
+    BadName,
+    KindRating,
+    Player,
+    Waiting,
+    Window,
+    check_name,
+    default_name,
+    new_player_id,
+    new_secret,
+    seat_key,
+    secret_hash,
+    standings,
+)
+from server.protocol.limits import MAX_NAME
+from server.rooms import ActionError, Room, RoomRegistry
+from server.store import Database
+
+from .deps import ClientId, Quotas, SettingsDep
+from .identity import COOKIE, cookie_secret
+from .player_schemas import Leaderboard, PlayNow, PlayNowStatus, Profile, Rename
+from .playerdata import PlayerData
+from .playnow import Matchmaker, PlayNowQueue, matched
+from .playnow_cluster import ClusterMatchmaker
+from .schemas import ErrorResponse
+
+router = APIRouter(tags=["players"])
+COOKIE_AGE = 400 * 86_400  # s: the longest browsers keep a cookie
+RECENT = 20  # ranked matches on a profile
+LEADERBOARD_MAX = 500
+_ERRORS: dict[int | str, dict[str, Any]] = {
+    401: {"model": ErrorResponse},
+    404: {"model": ErrorResponse},
+    409: {"model": ErrorResponse},
+    429: {"model": ErrorResponse},
+}
+GameParam = Annotated[str, Path(pattern="^(eight_ball|nine_ball)$")]
+
+
+def get_player_data(conn: HTTPConnection) -> PlayerData:
+    data: PlayerData = conn.app.state.players
+    return data
+
+
+def get_matchmaker(conn: HTTPConnection) -> PlayNowQueue:
+    matchmaker: PlayNowQueue = conn.app.state.matchmaker
+    return matchmaker
+
+
+Data = Annotated[PlayerData, Depends(get_player_data)]
+Matches = Annotated[PlayNowQueue, Depends(get_matchmaker)]
+
+
+async def known_player(request: Request, data: Data) -> Player:
+    """The player of the cookie, else 401 `no_player` (the page makes one on load)."""
+    secret = cookie_secret(request)
+    player = None if secret is None else await data.by_secret(secret_hash(secret))
+    if player is None:
+        raise HTTPException(
+            401, {"code": "no_player", "message": "No profile yet: load the page first."}
+        )
+    return player
+
+
+Me = Annotated[Player, Depends(known_player)]
+
+
+def _set_cookie(response: Response, request: Request, secret: str, secure: bool) -> None:
+    response.set_cookie(
+        COOKIE,
+        secret,
+        max_age=COOKIE_AGE,
+        path="/",
+        httponly=True,
+        samesite="lax",
+        secure=secure or request.url.scheme == "https",
+    )
+
+
+async def _profile(data: Data, player: Player, now: float, me: bool) -> dict[str, Any]:
+    ratings = await data.ratings(player.id, RANKED_KINDS)
+    recent = await data.recent(player.id, RECENT)
+    played = await data.matches(player.id, RECENT)
+    shown = []
+    for r in recent:
+        seat = r.players.index(player.id)
+        before = r.before[seat] if r.before else None
+        after = r.after[seat] if r.after else None
+        shown.append(
+            {
+                "room_id": r.room_id,
+                "match_id": r.match_id,
+                "game": r.kind,
+                "opponent": r.names[1 - seat],
+                "opponent_id": r.players[1 - seat],
+                "won": r.winner == seat,
+                "rating_before": None if before is None else before[0],
+                "rating_after": None if after is None else after[0],
+                "finished_at": r.finished_at,
+                "replay": None if r.match_id is None else f"/m/{r.match_id}",
+            }
+        )
+    return {
+        "id": player.id,
+        "name": player.name,
+        "me": me,
+        "ratings": [_rating_view(k, now) for k in ratings.values()],
+        "recent": shown,
+        "matches": [
+            {
+                "match_id": m.match_id,
+                "room_id": m.room_id,
+                "game": m.kind,
+                "players": m.players,
+                "seat": m.seat,
+                "status": m.status,
+                "score": m.score,
+                "won": None if m.winner is None else m.winner == m.seat,
+                "started_at": m.started_at,
+                "finished_at": m.finished_at,
+                "replay": f"/m/{m.match_id}" if m.shots > 0 else None,
+            }
+            for m in played
+        ],
+    }
+
+
+def _rating_view(k: KindRating, now: float) -> dict[str, Any]:
+    current = k.at(now)
+    return {
+        "game": k.kind,
+        "rating": round(current.rating, 2),
+        "rd": round(current.rd, 2),
+        "conservative": round(current.conservative, 2),
+        "provisional": k.provisional(now),
+        "games": k.games,
+        "wins": k.wins,
+    }
+
+
+@router.get("/api/players/me", response_model=Profile, responses=_ERRORS)
+async def my_profile(
+    request: Request,
+    response: Response,
+    data: Data,
+    settings: SettingsDep,
+    quotas: Quotas,
+    client: ClientId,
+    matches: Matches,
+) -> dict[str, Any]:
+    """The asking player's profile. On a first visit (no valid cookie) a player is made and
+    its secret set in the `pool_player` cookie (HttpOnly, SameSite=Lax). 429: this address
+    made too many profiles within the rate window."""
+    now = matches.registry.clock.wall()
+    secret = cookie_secret(request)
+    player = None if secret is None else await data.by_secret(secret_hash(secret))
+    if player is None:
+        if not quotas.allow("player", client):
+            raise HTTPException(
+                429, {"code": "rate_limited", "message": "Too many new profiles; wait a minute."}
+            )
+        player_id = new_player_id()
+        player = Player(player_id, default_name(player_id), now)
+        secret = new_secret()
+        await data.add(player, secret_hash(secret))
+        public = settings.public_url or ""
+        _set_cookie(response, request, secret, public.startswith("https:"))
+    return await _profile(data, player, now, me=True)
+
+
+@router.patch("/api/players/me", response_model=Profile, responses=_ERRORS)
+async def rename(body: Rename, me: Me, data: Data, matches: Matches) -> dict[str, Any]:
+    """A new display name (the rule of a seat's name; 422 `bad_name`). Rooms already
+    joined keep the name they were joined with."""
+    try:
+        name = check_name(body.name, MAX_NAME)
+    except BadName as exc:
+        raise HTTPException(422, {"code": "bad_name", "message": str(exc)}) from None
+    await data.rename(me.id, name)
+    renamed = Player(me.id, name, me.created_at)
+    return await _profile(data, renamed, matches.registry.clock.wall(), me=True)
+
+
+@router.get("/api/players/{player_id}", response_model=Profile, responses=_ERRORS)
+async def player_profile(
+    player_id: Annotated[str, Path(max_length=32)], data: Data, matches: Matches
+) -> dict[str, Any]:
+    """Anyone's public profile: name, ratings, recent ranked matches (404 `unknown_player`)."""
+    player = await data.get(player_id)
+    if player is None:
+        raise HTTPException(404, {"code": "unknown_player", "message": "No such player."})
+    return await _profile(data, player, matches.registry.clock.wall(), me=False)
+
+
+@router.get("/api/leaderboard/{game}", response_model=Leaderboard)
+async def leaderboard(
+    game: GameParam,
+    data: Data,
+    matches: Matches,
+    limit: Annotated[int, Query(ge=1, le=LEADERBOARD_MAX)] = 100,
+) -> dict[str, Any]:
+    """Ranked players by rating - 2 RD (highest first), provisional players apart."""
+    rows = await data.rated(game)
+    names = {k.player_id: name for k, name in rows}
+    ranked, provisional = standings((k for k, _ in rows), matches.registry.clock.wall())
+
+    def view(standing: Any) -> dict[str, Any]:
+        return {
+            "rank": standing.rank,
+            "player_id": standing.player_id,
+            "name": names[standing.player_id],
+            "rating": round(standing.rating, 2),
+            "games": standing.games,
+        }
+
+    return {
+        "game": game,
+        "ranked": [view(s) for s in ranked[:limit]],
+        "provisional": [view(s) for s in provisional[:limit]],
+    }
+
+
+def remember_seat(request: Request, room_id: str, seat: int) -> None:
+    """A seat taken through `POST /api/rooms/{room_id}/join`: with a profile's cookie, the
+    match played there goes on the profile (queued; the join does not wait for it)."""
+    secret = cookie_secret(request)
+    if secret is not None:
+        data = get_player_data(request)
+        data.seated(secret_hash(secret), room_id, seat, request.app.state.registry.clock.wall())
+
+
+# ---- Play now -----------------------------------------------------------------------------
+
+
+def _queue_quota(quotas: Quotas, player: Player) -> None:
+    if not quotas.allow("queue", player.id):
+        raise HTTPException(
+            429, {"code": "rate_limited", "message": "Too many Play now presses; wait a minute."}
+        )
+
+
+@router.post("/api/playnow", response_model=PlayNowStatus, responses=_ERRORS)
+async def play_now(
+    body: PlayNow, request: Request, me: Me, data: Data, matches: Matches, quotas: Quotas
+) -> dict[str, Any]:
+    """Queue for a ranked game of `game` at the player's rating; paired at once when
+    someone suitable waits (`matched`), else `waiting`: long-poll `GET /api/playnow`.
+    Pressing again keeps the player's one place. 429: too many joins and leaves."""
+    _queue_quota(quotas, me)
+    secret = cookie_secret(request)
+    assert secret is not None
+    rating = (await data.ratings(me.id, (body.game,)))[body.game]
+    # Read before queueing: `join` itself is one step on the loop (one entry a player).
+    entry = Waiting(
+        me.id,
+        me.name,
+        body.game,
+        rating.at(matches.registry.clock.wall()).rating,
+        matches.now(),
+        seat_key(secret),
+    )
+    try:
+        await matches.enqueue(entry)
+    except ActionError as exc:
+        raise HTTPException(503, {"code": exc.code, "message": exc.message}) from None
+    return await matches.status(me.id)
+
+
+@router.get("/api/playnow", response_model=PlayNowStatus, responses=_ERRORS)
+async def play_now_status(
+    me: Me,
+    matches: Matches,
+    settings: SettingsDep,
+    wait: Annotated[float, Query(ge=0, le=60, allow_inf_nan=False)] = 0.0,
+) -> dict[str, Any]:
+    """Where the player stands; with `wait`, held open (up to `wait` s, at most
+    `POOL_PLAYNOW_POLL`) until that changes: paired, offered the computer, or out."""
+    await matches.wait(me.id, min(wait, settings.playnow_poll))
+    return await matches.status(me.id)
+
+
+@router.delete("/api/playnow", response_model=PlayNowStatus, responses=_ERRORS)
+async def leave_queue(me: Me, matches: Matches, quotas: Quotas) -> dict[str, Any]:
+    """Leave the queue (nothing happens if not in it)."""
+    _queue_quota(quotas, me)
+    await matches.dequeue(me.id)
+    return await matches.status(me.id)
+
+
+@router.post("/api/playnow/computer", response_model=PlayNowStatus, responses=_ERRORS)
+async def play_the_computer(request: Request, me: Me, matches: Matches) -> dict[str, Any]:
+    """Take the offered computer (409 `not_offered` before the wait is over): a private
+    room against the level nearest the player's rating, not rated."""
+    secret = cookie_secret(request)
+    assert secret is not None
+    try:
+        assignment, level = await matches.take_computer(me.id, seat_key(secret))
+    except ActionError as exc:
+        code = 409 if exc.code == "not_offered" else 503
+        raise HTTPException(code, {"code": exc.code, "message": exc.message}) from None
+    return {**matched(assignment), "computer": level}
+
+
+def install(
+    app: FastAPI,
+    registry: RoomRegistry,
+    store: Database,
+    match_ids: Callable[[Room], int | None] | None,
+    cluster: Cluster | None = None,
+) -> PlayNowQueue:
+    """Add the players' routes and the Play now queue to `app`: in this process, or in
+    Redis in cluster mode. The lifespan starts its `run` and calls its `resume` after the
+    rooms are restored."""
+    settings = registry.settings
+    data = PlayerData(store)
+    window = Window(
+        settings.playnow_window,
+        settings.playnow_widen,
+        settings.playnow_window_max,
+        settings.playnow_computer_after,
+    )
+    matchmaker: PlayNowQueue
+    if cluster is None:
+        matchmaker = Matchmaker(registry, data, window, match_ids)
+    else:
+        matchmaker = ClusterMatchmaker(registry, data, window, cluster, match_ids)
+    app.state.players = data
+    app.state.matchmaker = matchmaker
+    app.include_router(router)
+    return matchmaker

@@ -1,0 +1,128 @@
+"""A friends' table is ranked only when both players agree: the creator with `ranked: true`
+on the new room, each player again with `ranked: true` on their join."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import pytest
+from fastapi.testclient import TestClient
+
+from server.config import Settings
+from server.players import KindRating, rate_match
+from server.rooms.clock import ManualClock
+from tests.api.test_players import Visitor, break_rack
+from tests.support.messages import receive_until, state_where
+from tests.support.rooms import app_with, connect, create_room
+
+
+@pytest.fixture
+def clock() -> ManualClock:
+    return ManualClock()
+
+
+@pytest.fixture
+def client(settings: Settings, clock: ManualClock) -> Iterator[TestClient]:
+    with TestClient(app_with(settings, clock=clock.clock)) as c:
+        yield c
+
+
+def ranked_room(creator: Visitor, game: str = "eight_ball") -> str:
+    made = creator.call("POST", "/api/rooms", json={"game": game, "ranked": True})
+    assert made.status_code == 201, made.text
+    assert made.json()["ranked"] is True
+    return str(made.json()["room_id"])
+
+
+def sit(visitor: Visitor, room_id: str, name: str, ranked: bool = True) -> dict:
+    joined = visitor.call(
+        "POST", f"/api/rooms/{room_id}/join", json={"name": name, "ranked": ranked}
+    )
+    assert joined.status_code == 200, joined.text
+    return dict(joined.json())
+
+
+def eight_ball(visitor: Visitor) -> dict:
+    profile = visitor.call("GET", "/api/players/me").json()
+    return dict(next(r for r in profile["ratings"] if r["game"] == "eight_ball"))
+
+
+def test_a_ranked_friends_table_moves_both_ratings_by_glicko2(client, clock):
+    ana, ben = Visitor(client), Visitor(client)
+    room_id = ranked_room(ana)
+    assert client.get(f"/api/rooms/{room_id}").json()["ranked"] is True
+    (listed,) = [r for r in client.get("/api/rooms").json()["rooms"] if r["room_id"] == room_id]
+    assert listed["ranked"] is True
+    a = sit(ana, room_id, "Ana")
+    b = sit(ben, room_id, "Ben")
+    with connect(client, room_id, a["token"]) as wa, connect(client, room_id, b["token"]) as wb:
+        receive_until(wa, "state")
+        receive_until(wb, "state")
+        break_rack(wa, wb)
+        wb.send_json({"type": "concede"})
+        state_where(wa, lambda s: s["match"]["match_over"] and s["match"]["match_winner"] == 0)
+        # A rematch is friendly, as in a Play now room.
+        wa.send_json({"type": "rematch"})
+        wb.send_json({"type": "rematch"})
+        state_where(wb, lambda s: s["match"] is not None and not s["match"]["match_over"])
+        break_rack(wb, wa)
+        wa.send_json({"type": "concede"})
+        state_where(wb, lambda s: s["match"]["match_over"] and s["match"]["match_winner"] == 1)
+    expect_a, expect_b = rate_match(
+        KindRating(ana.id, "eight_ball"), KindRating(ben.id, "eight_ball"), True, clock.now
+    )
+    got_a, got_b = eight_ball(ana), eight_ball(ben)
+    assert got_a["rating"] == pytest.approx(expect_a.rating.rating, abs=0.01)
+    assert got_a["rd"] == pytest.approx(expect_a.rating.rd, abs=0.01)
+    assert got_b["rating"] == pytest.approx(expect_b.rating.rating, abs=0.01)
+    assert (got_a["games"], got_a["wins"], got_b["games"], got_b["wins"]) == (1, 1, 1, 0)
+    (recent,) = ana.call("GET", "/api/players/me").json()["recent"]
+    assert recent["room_id"] == room_id and recent["opponent"] == ben.profile["name"]
+
+
+def test_a_join_without_agreement_is_refused_and_seats_nobody(client):
+    ana, ben = Visitor(client), Visitor(client)
+    room_id = ranked_room(ana)
+    sit(ana, room_id, "Ana")
+    refused = [
+        ben.call("POST", f"/api/rooms/{room_id}/join", json={"name": "Ben"}),
+        ben.call("POST", f"/api/rooms/{room_id}/join", json={"name": "Ben", "ranked": False}),
+        client.post(f"/api/rooms/{room_id}/join", json={"name": "Cy", "ranked": True}),
+    ]
+    for response in refused:
+        assert response.status_code == 409, response.text
+        assert response.json()["detail"]["code"] == "ranked_needs_agreement"
+    assert client.get(f"/api/rooms/{room_id}").json()["players"] == ["Ana", None]
+    sit(ben, room_id, "Ben")  # agreeing now seats them
+    assert client.get(f"/api/rooms/{room_id}").json()["players"] == ["Ana", "Ben"]
+
+
+def test_an_unranked_friends_table_changes_no_rating(client):
+    ana, ben = Visitor(client), Visitor(client)
+    room_id = create_room(client)
+    assert client.get(f"/api/rooms/{room_id}").json()["ranked"] is False
+    a = sit(ana, room_id, "Ana")  # agreeing to an unranked table changes nothing
+    b = sit(ben, room_id, "Ben")
+    with connect(client, room_id, a["token"]) as wa, connect(client, room_id, b["token"]) as wb:
+        receive_until(wa, "state")
+        receive_until(wb, "state")
+        break_rack(wa, wb)
+        wb.send_json({"type": "concede"})
+        state_where(wa, lambda s: s["match"]["match_over"])
+    for player in (ana, ben):
+        assert eight_ball(player)["games"] == 0
+        assert player.call("GET", "/api/players/me").json()["recent"] == []
+
+
+def test_practice_the_computer_and_strangers_cannot_open_a_ranked_table(client):
+    ana = Visitor(client)
+    for body, status, code in [
+        ({"game": "practice", "ranked": True}, 422, "bad_ranked"),
+        ({"game": "nine_ball", "ranked": True, "opponent": "pro"}, 422, "bad_ranked"),
+    ]:
+        response = ana.call("POST", "/api/rooms", json=body)
+        assert response.status_code == status, response.text
+        assert response.json()["detail"]["code"] == code
+    stranger = client.post("/api/rooms", json={"game": "nine_ball", "ranked": True})
+    assert stranger.status_code == 401 and stranger.json()["detail"]["code"] == "no_player"
+    assert client.get("/api/rooms").json()["total"] == 0  # nothing opened

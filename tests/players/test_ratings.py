@@ -1,0 +1,84 @@
+"""Ratings per game kind over time: the ranked match update, provisional players, the
+leaderboard order and the computer's levels."""
+
+from __future__ import annotations
+
+import pytest
+
+from server.ai import Bot
+from server.players import (
+    COMPUTER_RATINGS,
+    PROVISIONAL_RD,
+    RATING_PERIOD,
+    KindRating,
+    Rating,
+    nearest_level,
+    rate,
+    rate_match,
+    standings,
+)
+
+NOW = 1_000_000.0
+
+
+def test_a_ranked_match_rates_each_player_against_the_others_rating_before_it():
+    ana = KindRating("ana", "eight_ball", Rating(1600, 80, 0.06), games=12, wins=7, rated_at=NOW)
+    ben = KindRating("ben", "eight_ball", Rating(1500, 200, 0.06), games=2, wins=1, rated_at=NOW)
+    a, b = rate_match(ana, ben, first_won=False, now=NOW)
+    assert a.rating == rate(ana.rating, [(ben.rating, 0.0)])
+    assert b.rating == rate(ben.rating, [(ana.rating, 1.0)])
+    assert a.rating.rating < 1600 < b.rating.rating
+    assert (a.games, a.wins, b.games, b.wins) == (13, 7, 3, 2)
+    assert a.rated_at == b.rated_at == NOW
+
+
+def test_idle_days_widen_the_deviation_before_the_match_is_rated():
+    ana = KindRating("ana", "nine_ball", Rating(1600, 60, 0.06), games=30, rated_at=NOW)
+    later = NOW + 100 * RATING_PERIOD
+    assert ana.at(later).rd > 60
+    a, _ = rate_match(ana, KindRating("ben", "nine_ball"), first_won=True, now=later)
+    assert a.rating == rate(ana.at(later), [(Rating(), 1.0)])
+
+
+def test_new_players_are_provisional_until_their_deviation_is_low():
+    new = KindRating("ana", "eight_ball")
+    assert new.provisional(NOW)
+    settled = KindRating("ana", "eight_ball", Rating(1500, PROVISIONAL_RD - 1), 20, 10, NOW)
+    assert not settled.provisional(NOW)
+    assert settled.provisional(NOW + 400 * RATING_PERIOD)  # a year away: provisional again
+
+
+def test_the_leaderboard_orders_by_rating_minus_two_deviations_provisional_apart():
+    rows = [
+        KindRating("high-but-unsure", "eight_ball", Rating(1900, 100), 9, 8, NOW),  # 1700
+        KindRating("steady", "eight_ball", Rating(1800, 40), 60, 40, NOW),  # 1720
+        KindRating("low", "eight_ball", Rating(1400, 50), 30, 10, NOW),  # 1300
+        KindRating("new", "eight_ball", Rating(2000, 300), 1, 1, NOW),  # provisional
+        KindRating("never", "eight_ball"),  # no games: not listed
+    ]
+    ranked, provisional = standings(rows, NOW)
+    assert [(s.rank, s.player_id) for s in ranked] == [
+        (1, "steady"),
+        (2, "high-but-unsure"),
+        (3, "low"),
+    ]
+    assert [s.rating for s in ranked] == [1720, 1700, 1300]
+    assert [(s.rank, s.player_id, s.games) for s in provisional] == [(None, "new", 1)]
+
+
+def test_every_computer_level_has_a_rating_and_the_nearest_is_offered():
+    assert tuple(COMPUTER_RATINGS) == Bot.LEVELS
+    assert sorted(COMPUTER_RATINGS.values()) == list(COMPUTER_RATINGS.values())
+    assert nearest_level(1500) == "amateur"
+    assert nearest_level(900) == "beginner"
+    assert nearest_level(1900) == "club"  # 121 from club, 180 from pro
+    assert nearest_level(3000) == "pro"
+
+
+@pytest.mark.parametrize(("share", "gap"), [(0.817, 260), (0.833, 279), (0.85, 301)])
+def test_the_level_gaps_come_from_the_measured_win_shares(share: float, gap: float):
+    import math
+
+    assert 400 * math.log10(share / (1 - share)) == pytest.approx(gap, abs=1)
+    steps = list(COMPUTER_RATINGS.values())
+    assert round(gap) in [round(b - a) for a, b in zip(steps, steps[1:], strict=False)]

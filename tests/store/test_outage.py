@@ -1,0 +1,86 @@
+"""PostgreSQL out of reach (restarting, a network cut) delays the history, never loses or
+reorders it: a write is tried again on a new connection until the server is back. The
+store waits through an injected `sleep` and `clock`, so "10 s down" costs the test no ten
+real seconds; the server is really stopped and started again."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import pytest
+from sqlalchemy.exc import OperationalError
+
+from server.store import Database, Repository
+from tests.support.postgres import PostgresServer, running_postgres
+
+pytestmark = pytest.mark.timeout(120)
+TABLE = [2.54, 1.27, 0.028575, 0.114, 0.127]
+
+
+class StoreTime:
+    """The store's clock: it moves only when the store sleeps. `then` runs once the clock
+    passes `at` (the server comes back)."""
+
+    def __init__(self) -> None:
+        self.now = 0.0
+        self.waits: list[float] = []
+        self.at = float("inf")
+        self.then = lambda: None
+
+    def clock(self) -> float:
+        return self.now
+
+    def sleep(self, seconds: float) -> None:
+        self.waits.append(seconds)
+        self.now += seconds
+        if self.now >= self.at:
+            self.at = float("inf")
+            self.then()
+
+
+@pytest.fixture(scope="module")
+def server() -> Iterator[PostgresServer]:
+    """A server of these tests' own: they stop it and start it again."""
+    with running_postgres() as pg:
+        yield pg
+        assert pg.running()  # each test leaves it up
+
+
+def record(repo: Repository, n: int) -> int:
+    shot = {"angle": 0.0, "speed": 1.0, "tip": [0.0, 0.0]}
+    return repo.record_shot(1, n, 1, 0, shot, TABLE, {"ids": []}, {"n": n}, epoch=1)
+
+
+def test_writes_wait_out_ten_seconds_without_postgresql_in_order(server: PostgresServer):
+    time = StoreTime()
+    db = Database(server.create_database(), sleep=time.sleep, clock=time.clock)
+    db.run(lambda r: r.start_match(1, "room", "practice", ["Ana"], 1, epoch=1))
+    db.run(lambda r: r.save_room("room", '{"after_shot":0}', epoch=1))
+    server.stop("immediate")  # gone at once, connections cut, like a crash
+    time.at, time.then = 10.0, server.start
+    for n in range(1, 6):
+        db.write(lambda r, n=n: record(r, n), "record shot")
+        db.write(lambda r, n=n: r.save_room("room", f'{{"after_shot":{n}}}', epoch=1), "save")
+    shots = db.run(lambda r: r.shots(1))  # queued behind the writes
+    rooms = db.run(lambda r: r.rooms())
+    db.close()
+    assert sum(time.waits) >= 10.0  # the first write waited the outage out
+    assert time.waits[:3] == [0.05, 0.1, 0.2] and max(time.waits) == 2.0  # backoff, capped
+    assert [(s.n, s.outcome) for s in shots] == [(n, {"n": n}) for n in range(1, 6)]
+    assert [r.data for r in rooms] == [{"after_shot": 5}]
+
+
+def test_a_read_gives_up_after_its_limit_and_the_store_goes_on(server: PostgresServer):
+    time = StoreTime()
+    url = server.create_database()
+    db = Database(url, sleep=time.sleep, clock=time.clock)
+    db.run(lambda r: r.save_room("room", "{}"))
+    server.stop("immediate")
+    with pytest.raises(OperationalError):
+        db.submit(lambda r: r.rooms(), retry_for=10.0).result()
+    with pytest.raises(OperationalError):
+        Database(url)  # nor can a process start on it meanwhile
+    assert 5.0 < time.now <= 10.0
+    server.start()
+    assert [r.room_id for r in db.run(lambda r: r.rooms())] == ["room"]
+    db.close()

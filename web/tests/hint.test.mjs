@@ -1,0 +1,34 @@
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { powerFromSpeed, spinWords, describeHint } from '../js/hint.js';
+import { speedFromPower, MIN_SPEED } from '../js/geometry.js';
+
+test('the hint draws the cue back by the power that gives its speed', () => {
+  for (const speed of [MIN_SPEED, 0.8, 2.5, 6.0, 11.9, 12.0]) {
+    const power = powerFromSpeed(speed, 12);
+    assert.ok(power >= 0 && power <= 1);
+    assert.ok(Math.abs(speedFromPower(power, 12) - speed) < 1e-9, `${speed}`);
+  }
+  assert.equal(powerFromSpeed(0.01, 12), 0);
+  assert.equal(powerFromSpeed(20, 12), 1);
+});
+
+test('spin in words: follow or draw, then side; a tiny offset is centre ball', () => {
+  assert.equal(spinWords([0, 0]), 'centre ball');
+  assert.equal(spinWords([0.02, -0.03]), 'centre ball');
+  assert.equal(spinWords([0, 0.35]), 'follow');
+  assert.equal(spinWords([0, -0.35]), 'draw');
+  assert.equal(spinWords([0.3, 0.15]), 'follow and right side');
+  assert.equal(spinWords([-0.3, 0]), 'left side');
+});
+
+test('the caption says what the plan is, its odds for a pot, its speed and spin', () => {
+  const base = { level: 'pro', place: null, call: null, angle: 0, speed: 2.345,
+    tip: /** @type {[number, number]} */ ([0, -0.35]), target: 3, pocket: 2, chance: 0.85 };
+  assert.equal(describeHint({ ...base, kind: 'pot' }),
+    'Pot the 3 (85 % of the computer\'s trials went in): 2.3 m/s, draw.');
+  assert.equal(describeHint({ ...base, kind: 'safety', tip: [0, 0] }),
+    'Play safe: 2.3 m/s, centre ball.');
+  assert.equal(describeHint({ ...base, kind: 'kick', chance: null }),
+    'Kick at it off a cushion: 2.3 m/s, draw.');
+});
