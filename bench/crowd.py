@@ -3,9 +3,11 @@
     .venv/bin/python -m bench.crowd [--runs 3] [--seconds 12]
 
 Starts `python -m server` on a free loopback port (throw-away database) and measures, for
-each flood, the two players of one room playing hard shots (a `frame` of tick k is late by
-its arrival minus the first frame's arrival minus (k - k0)/120 s; p50 / p99 over the
-window), the player sockets closed, the shot results lost, and what the flood got through:
+each flood, the two players of one room playing hard shots: how late each player's table
+starts moving (from the shooter's `shoot` to the shot's `motion` arriving at that player;
+p50 / p99 over the window), how late the shot's result comes after its motion has played
+(`shot_result` arrival minus the motion's arrival and duration; p99), the player sockets
+closed, the shot results lost, and what the flood got through:
 - quiet: the two players alone;
 - crowd: 150 spectators chatting as fast as they can and 30 reconnecting in a loop;
 - rooms: one client trying to open 5,000 rooms (then: can another client open one?);
@@ -30,23 +32,27 @@ import httpx
 from websockets.asyncio.client import connect
 from websockets.exceptions import ConnectionClosed
 
-from bench.load import free_port, start_server, wait_healthy
+from bench.load import free_port, parse_motion, percentile, start_server, wait_healthy
+from server.config import Settings
 
-TICK_HZ = 120
+DEFAULTS = Settings()  # the server's default limits (not read from this environment)
 
 
 class Players:
-    """Two players taking turns with hard shots; records frame lateness and results."""
+    """Two players taking turns with hard shots; records how late each player's table
+    starts and ends each shot, and the results."""
 
     def __init__(self) -> None:
-        self.late: list[float] = []
+        self.shot_sent = 0.0  # when the shooter sent the latest `shoot`
+        self.starts: list[float] = []  # `shoot` -> `motion`, at each player
+        self.ends: list[float] = []  # `shot_result` after the motion's end, at each player
         self.results = 0
         self.closed: list[str] = []
         self.chat = 0
         self.presence = 0
 
     async def play(self, url: str, seat: int, stop: asyncio.Event) -> None:
-        first: tuple[float, int] | None = None
+        motion_end: float | None = None  # when this player's playback of the shot ends
         placed = False
         try:
             async with connect(url, max_size=2**22) as ws:
@@ -58,6 +64,9 @@ class Players:
                         continue
                     now = time.perf_counter()
                     if isinstance(raw, bytes):  # a shot's `motion`: the whole shot at once
+                        _, duration = parse_motion(raw)
+                        self.starts.append(now - self.shot_sent)
+                        motion_end = now + duration  # the server plays at pace 1
                         continue
                     message = json.loads(raw)
                     kind = message["type"]
@@ -65,15 +74,11 @@ class Players:
                         self.chat += 1
                     elif kind == "presence":
                         self.presence += 1
-                    elif kind == "frame":
-                        if first is None:
-                            first = (now, message["tick"])
-                        else:
-                            due = first[0] + (message["tick"] - first[1]) / TICK_HZ
-                            self.late.append(now - due)
                     elif kind == "shot_result":
                         self.results += 1
-                        first, placed = None, False
+                        if motion_end is not None:
+                            self.ends.append(now - motion_end)
+                        motion_end, placed = None, False
                     elif kind == "state" and message["phase"] == "aiming":
                         await self._act(ws, message["match"], seat, placed)
                         placed = placed or bool(message["match"]["ball_in_hand"])
@@ -93,6 +98,7 @@ class Players:
             return
         if match.get("requires_call"):
             await ws.send(json.dumps({"type": "call", "pocket": 0}))
+        self.shot_sent = time.perf_counter()
         await ws.send(
             json.dumps({"type": "shoot", "angle": 0.7 * self.results + 0.2, "speed": 7.0})
         )
@@ -135,11 +141,16 @@ async def list_flood(base: str, stop: asyncio.Event, counts: dict) -> None:
 async def one_run(flood: str, seconds: float) -> dict:
     with tempfile.TemporaryDirectory() as scratch:
         port = free_port()
-        # The listing flood needs 2,000 rooms from this one address: lift its limits there.
+        # The listing flood needs 2,000 rooms from this one address: lift its limits there;
+        # the others meet the server's own (`start_server` lifts them for `bench.load`).
         extra = (
             {"POOL_MAX_ROOMS_PER_CLIENT": "5000", "POOL_ROOM_CREATE_RATE": "100000/minute"}
             if flood == "listing"
-            else {}
+            else {
+                "POOL_MAX_ROOMS_PER_CLIENT": str(DEFAULTS.max_rooms_per_client),
+                "POOL_ROOM_CREATE_RATE": DEFAULTS.room_create_rate,
+                "POOL_JOIN_RATE": DEFAULTS.join_rate,
+            }
         )
         extra |= {"POOL_MAX_SPECTATORS": "500", "POOL_SHOT_CLOCK": "0"}
         proc = start_server(
@@ -206,10 +217,10 @@ async def measure(flood: str, base: str, port: int, seconds: float) -> dict:
     if flooder is not None:
         out, _ = await flooder.communicate()
         counts.update(json.loads(out.decode().strip().splitlines()[-1]))
-    late = sorted(players.late) or [0.0]
     return {
-        "late_p50_ms": 1000 * late[len(late) // 2],
-        "late_p99_ms": 1000 * late[min(len(late) - 1, int(len(late) * 0.99))],
+        "late_p50_ms": 1000 * percentile(players.starts, 50),
+        "late_p99_ms": 1000 * percentile(players.starts, 99),
+        "end_p99_ms": 1000 * percentile(players.ends, 99),
         "start_p99_ms": stats["stream"]["start_p99_ms"] or 0.0,
         "results": players.results / 2,
         "closed": len(players.closed),
@@ -258,7 +269,8 @@ def main() -> None:
         )
         return
     print(
-        f"{'flood':>8} {'flood/s':>8} {'late p50':>9} {'late p99':>9} {'start p99':>10} "
+        f"{'flood':>8} {'flood/s':>8} {'late p50':>9} {'late p99':>9} {'end p99':>8} "
+        f"{'start p99':>10} "
         f"{'results':>8} {'closed':>7} {'chat/s':>7} {'pres/s':>7} {'rooms':>6} {'other':>6}"
     )
     for flood in args.floods.split(","):
@@ -269,7 +281,8 @@ def main() -> None:
 
         print(
             f"{flood:>8} {median('flood_per_s'):8.0f} {median('late_p50_ms'):9.1f} "
-            f"{median('late_p99_ms'):9.1f} {median('start_p99_ms'):10.1f} "
+            f"{median('late_p99_ms'):9.1f} {median('end_p99_ms'):8.1f} "
+            f"{median('start_p99_ms'):10.1f} "
             f"{median('results'):8.1f} {median('closed'):7.0f} {median('chat_per_s'):7.1f} "
             f"{median('presence_per_s'):7.1f} {median('rooms_made'):6.0f} "
             f"{median('other_client'):6.0f}",

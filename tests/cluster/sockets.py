@@ -1,32 +1,15 @@
-"""Room sockets on real servers, read without caring how a shot's motion is encoded: JSON
-text messages as dicts, a binary message as `{"type": "binary"}` (the cluster tests check
-seats, turns, results and history, not the motion format)."""
+"""Room sockets on real servers by their `ws_url` (the readers are `tests.support.live`'s;
+a shot's binary motion arrives decoded, which the cluster tests do not look at)."""
 
 from __future__ import annotations
 
-import asyncio
-import json
 from typing import Any
 
 import websockets
 
+from tests.support.live import greet, place_cue, recv, send, until
 
-async def recv(ws: Any, timeout: float = 30) -> dict:
-    data = await asyncio.wait_for(ws.recv(), timeout)
-    return {"type": "binary"} if isinstance(data, bytes) else json.loads(data)
-
-
-async def until(ws: Any, kind: str, timeout: float = 30) -> list[dict]:
-    """Messages up to and including the first of type `kind`."""
-    out = []
-    while True:
-        out.append(await recv(ws, timeout))
-        if out[-1]["type"] == kind:
-            return out
-
-
-async def send(ws: Any, message: dict) -> None:
-    await ws.send(json.dumps(message))
+__all__ = ["connect", "place_cue", "recv", "send", "until"]
 
 
 async def connect(url: str, token: str | None, origin: str | None = None) -> tuple[Any, dict, dict]:
@@ -36,15 +19,5 @@ async def connect(url: str, token: str | None, origin: str | None = None) -> tup
         url + (f"?token={token}" if token else ""),
         origin=origin,  # type: ignore[arg-type]
     )
-    welcome, state, presence = await recv(ws), await recv(ws), await recv(ws)
-    assert (welcome["type"], state["type"], presence["type"]) == ("welcome", "state", "presence")
+    welcome, state = await greet(ws)
     return ws, welcome, state
-
-
-async def place_cue(shooter: Any, x: float, y: float) -> dict:
-    """Ball in hand: put the cue ball at (x, y); returns the `state` the shooter gets."""
-    await send(shooter, {"type": "place_cue", "x": x, "y": y})
-    while (reply := await recv(shooter))["type"] not in ("state", "error"):
-        pass
-    assert reply["type"] == "state", reply
-    return reply

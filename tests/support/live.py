@@ -41,12 +41,12 @@ def ws_url(address: str, room_id: str, token: str | None = None) -> str:
     return f"ws://{address}/ws/rooms/{room_id}" + (f"?token={token}" if token else "")
 
 
-async def recv(ws: Any, timeout: float = 20) -> dict:
+async def recv(ws: Any, timeout: float = 30) -> dict:
     """The next message; the binary `motion` message decoded (`messages.decoded`)."""
     return decoded(await asyncio.wait_for(ws.recv(), timeout))
 
 
-async def until(ws: Any, kind: str, timeout: float = 20) -> list[dict]:
+async def until(ws: Any, kind: str, timeout: float = 30) -> list[dict]:
     """Messages up to and including the first of type `kind`."""
     out = []
     while True:
