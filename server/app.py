@@ -131,34 +131,20 @@ def _serve_web(app: FastAPI, web_dir: Path) -> None:
     client routes on the path."""
     index = web_dir / "index.html"
 
-    def page() -> FileResponse:
+    async def page() -> FileResponse:
         if not index.is_file():
             raise HTTPException(404, {"code": "no_client", "message": "web/ is missing."})
         return FileResponse(index, media_type="text/html")
 
-    @app.get("/", include_in_schema=False)
-    async def lobby_page() -> FileResponse:
-        return page()
-
-    @app.get("/r/{room_id}", include_in_schema=False)
-    async def room_page(room_id: str) -> FileResponse:
-        return page()
-
-    @app.get("/m/{match_id}", include_in_schema=False)
-    async def match_page(match_id: str) -> FileResponse:
-        return page()
-
-    @app.get("/profile", include_in_schema=False)
-    async def profile_page() -> FileResponse:
-        return page()
-
-    @app.get("/p/{player_id}", include_in_schema=False)
-    async def player_page(player_id: str) -> FileResponse:
-        return page()
-
-    @app.get("/leaderboard", include_in_schema=False)
-    async def leaderboard_page() -> FileResponse:
-        return page()
+    for path in (
+        "/",
+        "/r/{room_id}",
+        "/m/{match_id}",
+        "/profile",
+        "/p/{player_id}",
+        "/leaderboard",
+    ):
+        app.add_api_route(path, page, methods=["GET"], include_in_schema=False)
 
     @app.get("/style.css", include_in_schema=False)
     async def stylesheet() -> FileResponse:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import hashlib
 import time
 
-from playwright.sync_api import Page
+from playwright.sync_api import Error, Page
 
 READY = "window.__pool && window.__pool.ready"
 POLL_MS = 50
@@ -17,10 +17,21 @@ def wait_for(page: Page, expression: str, arg: object = None, timeout: float = 3
     page's Content-Security-Policy (no eval) refuses; `evaluate` goes through the debugger
     protocol, so it is polled here instead."""
     deadline = time.monotonic() + timeout / 1000
-    while not page.evaluate(expression, arg):
+    while not _evaluate(page, expression, arg):
         if time.monotonic() > deadline:
             raise TimeoutError(f"not true within {timeout:.0f} ms: {expression}")
         page.wait_for_timeout(POLL_MS)
+
+
+def _evaluate(page: Page, expression: str, arg: object) -> object:
+    """`page.evaluate`, false while the page is navigating (an action that opens another
+    page, such as creating a room, destroys the context an evaluation ran in)."""
+    try:
+        return page.evaluate(expression, arg)
+    except Error as exc:
+        if "Execution context was destroyed" in exc.message:
+            return False
+        raise
 
 
 def wait_ready(page: Page, phase: str | None = None, timeout: float = 30_000) -> None:
