@@ -74,6 +74,12 @@ class Settings(BaseSettings):
     max_rooms_per_client: Annotated[int, Field(ge=1, le=1_000_000)] = 20
     room_create_rate: str = "30/minute"
     join_rate: str = "60/minute"
+    # Spectator sockets opened per client (players, with their seat's token, are not
+    # counted): a script reconnecting in a loop costs the event loop a handshake each time.
+    watch_rate: str = "20/10 seconds"
+    # A refused spectator handshake is answered this late: a script retrying in a loop then
+    # costs the loop one refusal a second instead of hundreds.
+    watch_refusal_delay: Annotated[float, Field(ge=0.0, le=60.0)] = 1.0
 
     # The engine ticks at a fixed 120 Hz; a shot's motion goes out whole at the strike, and
     # the room keeps every `frame_every`-th tick of it (where a late joiner's table starts).
@@ -95,6 +101,10 @@ class Settings(BaseSettings):
     send_timeout: PositiveSeconds = 5.0
     rate_burst: Annotated[float, Field(ge=1.0, le=10_000.0)] = 40.0  # token bucket per socket
     rate_per_second: Annotated[float, Field(gt=0.0, le=10_000.0)] = 20.0
+    # A spectator only chats and asks for a `sync`: a smaller budget, so a crowd sending as
+    # fast as it may costs the event loop little (faster: closed 1008, as for players).
+    spectator_rate_burst: Annotated[float, Field(ge=1.0, le=10_000.0)] = 10.0
+    spectator_rate_per_second: Annotated[float, Field(gt=0.0, le=10_000.0)] = 2.0
     # Social traffic, so that no crowd can drown the players: presence at most once per
     # interval, chat credits per sender (spectators fewer), spectators per room.
     presence_interval: Annotated[float, Field(ge=0.0, le=60.0)] = 1.0
@@ -142,7 +152,9 @@ class Settings(BaseSettings):
             raise ValueError("POOL_HEARTBEAT must be at most half of POOL_LEASE_TTL")
         return self
 
-    @field_validator("room_create_rate", "join_rate", "queue_rate", "player_create_rate")
+    @field_validator(
+        "room_create_rate", "join_rate", "watch_rate", "queue_rate", "player_create_rate"
+    )
     @classmethod
     def _rate(cls, value: str) -> str:
         try:

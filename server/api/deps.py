@@ -1,6 +1,10 @@
 """What routes depend on, as `Annotated` aliases: a route names `Registry` or `Store` in its
 signature instead of reaching into `request.app.state`, so its needs are visible and a test
-can override them (`app.dependency_overrides`)."""
+can override them (`app.dependency_overrides`).
+
+They are `async def` although they only read `app.state`: FastAPI runs a plain `def`
+dependency in a worker thread, and that hand-over (and the GIL's, back) took a third of the
+event loop's time per WebSocket connection under a reconnect flood (docs/performance.md)."""
 
 from __future__ import annotations
 
@@ -17,41 +21,45 @@ from server.store import Database
 from .quotas import ClientQuotas
 
 
-def get_settings(conn: HTTPConnection) -> Settings:
+async def get_settings(conn: HTTPConnection) -> Settings:
     settings: Settings = conn.app.state.settings
     return settings
 
 
-def get_registry(conn: HTTPConnection) -> RoomRegistry:
+def registry_of(conn: HTTPConnection) -> RoomRegistry:
     registry: RoomRegistry = conn.app.state.registry
     return registry
 
 
-def get_store(conn: HTTPConnection) -> Database:
+async def get_registry(conn: HTTPConnection) -> RoomRegistry:
+    return registry_of(conn)
+
+
+async def get_store(conn: HTTPConnection) -> Database:
     store: Database = conn.app.state.store
     return store
 
 
-def get_cluster(conn: HTTPConnection) -> Cluster | None:
+async def get_cluster(conn: HTTPConnection) -> Cluster | None:
     """This process's part in the cluster; None in one-process mode (no `POOL_REDIS_URL`)."""
     cluster: Cluster | None = getattr(conn.app.state, "cluster", None)
     return cluster
 
 
-def get_quotas(conn: HTTPConnection) -> ClientQuotas:
+async def get_quotas(conn: HTTPConnection) -> ClientQuotas:
     quotas: ClientQuotas = conn.app.state.quotas
     return quotas
 
 
-def client_id(conn: HTTPConnection) -> str:
+async def client_id(conn: HTTPConnection) -> str:
     """Who is asking, for per-client limits: the peer's address (no proxy headers are
     trusted)."""
     return conn.client.host if conn.client is not None else "unknown"
 
 
-def get_room(room_id: str, request: Request) -> LiveRoom:
+async def get_room(room_id: str, request: Request) -> LiveRoom:
     """The live room of the path's `room_id`, else 404 `unknown_room`."""
-    live = get_registry(request).get(room_id)
+    live = registry_of(request).get(room_id)
     if live is None:
         raise HTTPException(404, {"code": "unknown_room", "message": "No such room."})
     return live

@@ -52,12 +52,17 @@ _ERRORS: dict[int | str, dict[str, Any]] = {
 GameParam = Annotated[str, Path(pattern="^(eight_ball|nine_ball)$")]
 
 
-def get_player_data(conn: HTTPConnection) -> PlayerData:
+def player_data_of(conn: HTTPConnection) -> PlayerData:
     data: PlayerData = conn.app.state.players
     return data
 
 
-def get_matchmaker(conn: HTTPConnection) -> PlayNowQueue:
+async def get_player_data(conn: HTTPConnection) -> PlayerData:
+    """`async`: a plain `def` dependency would run in a worker thread (server.api.deps)."""
+    return player_data_of(conn)
+
+
+async def get_matchmaker(conn: HTTPConnection) -> PlayNowQueue:
     matchmaker: PlayNowQueue = conn.app.state.matchmaker
     return matchmaker
 
@@ -240,7 +245,7 @@ def remember_seat(request: Request, room_id: str, seat: int) -> None:
     match played there goes on the profile (queued; the join does not wait for it)."""
     secret = cookie_secret(request)
     if secret is not None:
-        data = get_player_data(request)
+        data = player_data_of(request)
         data.seated(secret_hash(secret), room_id, seat, request.app.state.registry.clock.wall())
 
 

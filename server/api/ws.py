@@ -1,8 +1,9 @@
 """The room WebSocket: handshake checks, then one reader and one sender per connection.
 
-Everything is checked before `accept()` (Origin, room, token: close 1008). After that the
-reader validates each raw text frame (size, rate, JSON, schema) and hands it to the room;
-the sender drains the connection's bounded outbox. Either ending ends both.
+Everything is checked before `accept()` (Origin, room, token, the address's quota of
+spectator sockets: close 1008). After that the reader validates each raw text frame (size,
+rate, JSON, schema) and hands it to the room; the sender drains the connection's bounded
+outbox. Either ending ends both.
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ from server.rooms import LiveRoom
 from server.rooms.connection import Connection, cancel_quietly
 from server.rooms.ratelimit import TokenBucket
 
-from .deps import ClusterDep, Registry, SettingsDep
+from .deps import ClientId, ClusterDep, Quotas, Registry, SettingsDep
 from .origin import origin_allowed
 
 router = APIRouter()
@@ -38,6 +39,8 @@ async def room_socket(
     settings: SettingsDep,
     registry: Registry,
     cluster: ClusterDep,
+    quotas: Quotas,
+    client: ClientId,
     token: str | None = None,
 ) -> None:
     origin, host = websocket.headers.get("origin"), websocket.headers.get("host")
@@ -60,6 +63,10 @@ async def room_socket(
         if seat is None:
             await websocket.close(CLOSE_POLICY, "bad_token")
             return
+    elif not quotas.allow("watch", client):
+        await asyncio.sleep(settings.watch_refusal_delay)
+        await websocket.close(CLOSE_POLICY, "too_many_connections")
+        return
     await websocket.accept()
     if seat is None and live.room.spectators >= settings.max_spectators:
         await websocket.close(CLOSE_POLICY, "room_crowded")
@@ -99,7 +106,11 @@ def chat_credit(settings: Settings, spectator: bool) -> TokenBucket:
 
 async def _read(websocket: WebSocket, live: LiveRoom, conn: Connection, settings: Settings) -> None:
     """Read raw frames until the peer leaves or breaks a limit (then `conn.close_code`)."""
-    bucket = TokenBucket(settings.rate_burst, settings.rate_per_second)
+    bucket = (
+        TokenBucket(settings.rate_burst, settings.rate_per_second)
+        if conn.seat is not None
+        else TokenBucket(settings.spectator_rate_burst, settings.spectator_rate_per_second)
+    )
     while True:
         message = await websocket.receive()
         if message["type"] == "websocket.disconnect":

@@ -46,6 +46,7 @@ class Connection:
     _social: int = 0  # social messages in the queue
     chat_credit: TokenBucket | None = None  # None: chat is not limited
     _wake: asyncio.Event = field(default_factory=asyncio.Event)
+    _refusing: bool = False  # chat refused since the last accepted line (told once)
     _sending_since: float | None = None  # loop time the batch being sent started
     _sender: asyncio.Task | None = None
     # Binary messages (a shot's `motion`); without it they are not sent (test doubles).
@@ -84,6 +85,17 @@ class Connection:
     def chat_allowed(self) -> bool:
         """Spend a chat credit (a bucket per sender, as lichess does)."""
         return self.chat_credit is None or self.chat_credit.take()
+
+    def first_refusal(self) -> bool:
+        """True for the first refused chat since the last accepted one: the sender is told
+        once, the rest of the streak is dropped without a reply (a flood of refusals would
+        cost the server a message out for every message in)."""
+        first = not self._refusing
+        self._refusing = True
+        return first
+
+    def accepted(self) -> None:
+        self._refusing = False
 
     def close(self, code: int, reason: str, flush: bool = False) -> None:
         """Ask the sender to stop; the transport closes the socket with `code`. `flush`:

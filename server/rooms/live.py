@@ -1,7 +1,8 @@
 """A room on the event loop: members, the shot stream, the shot clock and reconnection grace.
 
 `Room` decides; `LiveRoom` times and sends. Nothing here awaits a client: messages are
-pushed into each member's bounded outbox (`Connection`) and its own task sends them.
+pushed into each member's bounded outbox (`Connection`) and its own task sends them; the
+players' at once, the spectators' a few per turn of the loop (`FanOut`).
 """
 
 from __future__ import annotations
@@ -48,6 +49,7 @@ from .clock import SYSTEM_CLOCK, Clock
 from .computer import ComputerSeat
 from .connection import CLOSE_REPLACED, Connection
 from .errors import ActionError
+from .fanout import FanOut
 from .metrics import StreamMetrics
 from .observer import NullObserver, RoomObserver
 from .ratelimit import TokenBucket
@@ -80,6 +82,7 @@ class LiveRoom:
         self.clock = clock
         self.observer: RoomObserver = observer or NullObserver()
         self.members: dict[int, Connection] = {}
+        self._fanout = FanOut()  # what is sent to them: players first, spectators in turn
         self.seq = 0
         self.last_activity = self.clock.monotonic()
         self.ever_joined = False
@@ -111,9 +114,7 @@ class LiveRoom:
         """Send to every member with the next room sequence number."""
         self.seq += 1
         message.seq = self.seq
-        encoded = text(message)
-        for conn in list(self.members.values()):
-            conn.push(encoded, droppable, social)
+        self._fanout.send(list(self.members.values()), text(message), droppable, social)
 
     def broadcast_motion(self, plan: ShotPlan) -> None:
         """The shot's binary `motion` message to every member, with the next sequence
@@ -121,8 +122,7 @@ class LiveRoom:
         self.seq += 1
         motion = with_seq(plan.motion, self.seq)
         self._motion = (plan, motion, asyncio.get_running_loop().time())
-        for conn in list(self.members.values()):
-            conn.push(motion)
+        self._fanout.send(list(self.members.values()), motion)
 
     def _show_now(self) -> None:
         """Bring the room's shown frame up to now, for a `state` sent while balls roll."""
@@ -133,13 +133,10 @@ class LiveRoom:
 
     def relay(self, message: ServerMessage, exclude: Connection | None) -> None:
         """Send to everyone else, without a sequence number, droppable (aim relays)."""
-        encoded = text(message)
-        for conn in list(self.members.values()):
-            if conn is not exclude:
-                conn.push(encoded, True)
+        self._fanout.send(list(self.members.values()), text(message), True, exclude=exclude)
 
     def reply(self, conn: Connection, message: ServerMessage) -> None:
-        conn.push(text(message))
+        self._fanout.send_one(conn, text(message))
 
     def state_message(self, chat: bool = False) -> StateMessage:
         return self.room.state_message(self.clock_info(), self.grace_info(), chat)
@@ -155,13 +152,11 @@ class LiveRoom:
 
     def send_state(self, conn: Connection) -> None:
         """The `state` for one member (on connecting or `sync`), with the chat so far."""
-        conn.push(self.state_text(self.seq, chat=True))
+        self._fanout.send_one(conn, self.state_text(self.seq, chat=True))
 
     def broadcast_state(self) -> None:
         self.seq += 1
-        encoded = self.state_text(self.seq)
-        for conn in list(self.members.values()):
-            conn.push(encoded, False)
+        self._fanout.send(list(self.members.values()), self.state_text(self.seq))
 
     def broadcast_presence(self) -> None:
         """Who is here. At most one every `presence_interval`: the rest of a burst of joins
@@ -242,7 +237,7 @@ class LiveRoom:
         self.send_state(conn)
         self.broadcast_presence()
         if self._motion is not None:  # a shot is being shown: its motion, to play from now
-            conn.push(self._motion[1])
+            self._fanout.send_one(conn, self._motion[1])
 
     def detach(self, conn: Connection) -> None:
         """A member's socket ended. A player keeps the seat for the grace period."""
@@ -300,14 +295,7 @@ class LiveRoom:
                 self.send_state(conn)
             case "chat":
                 assert isinstance(msg, Chat)
-                if not conn.chat_allowed():
-                    raise ActionError("chat_rate_limited", "Too many chat messages; wait a moment.")
-                if seat is None and not self._crowd_chat.take():
-                    raise ActionError("chat_busy", "The spectators' chat is full; wait a moment.")
-                line = "".join(ch if ch.isprintable() else " " for ch in msg.text).strip()
-                if not line:
-                    raise ActionError("bad_message", "text: the message is empty")
-                self.broadcast(room.say(seat, line, self.clock.wall()), social=True)
+                self._chat(conn, msg.text)
             case "aim":
                 assert isinstance(msg, Aim)
                 room.check_aim(seat)
@@ -350,6 +338,24 @@ class LiveRoom:
                     self._arm_clock(restart=True)
                     self.observer.room_changed(room)
                 self.broadcast_state()
+
+    def _chat(self, conn: Connection, text: str) -> None:
+        """A chat line to everyone, within the sender's credits (and the spectators'
+        together); a refusal is told once per streak, then dropped without a reply."""
+        refusal = None
+        if not conn.chat_allowed():
+            refusal = ActionError("chat_rate_limited", "Too many chat messages; wait a moment.")
+        elif conn.seat is None and not self._crowd_chat.take():
+            refusal = ActionError("chat_busy", "The spectators' chat is full; wait a moment.")
+        if refusal is not None:
+            if conn.first_refusal():
+                raise refusal
+            return
+        line = "".join(ch if ch.isprintable() else " " for ch in text).strip()
+        if not line:
+            raise ActionError("bad_message", "text: the message is empty")
+        conn.accepted()
+        self.broadcast(self.room.say(conn.seat, line, self.clock.wall()), social=True)
 
     def _changed(self) -> None:
         self._arm_clock(restart=False)
@@ -420,6 +426,10 @@ class LiveRoom:
             self._arm_clock(restart=True)
             self.broadcast_state()
             return
+        # The shot's events (hundreds of small objects) are judged and packed: let them go
+        # now, not after the seconds it takes to show the shot (fewer live objects for the
+        # cyclic collector to walk, docs/performance.md).
+        del result
         loop = asyncio.get_running_loop()
         start = loop.time()
         self.metrics.shot_started(start, time.perf_counter() - started)

@@ -7,15 +7,15 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import Any
 
 import httpx
 import pytest
 from fastapi.testclient import TestClient
+from starlette.testclient import WebSocketTestSession
 
-from server.config import Settings
 from server.players import COMPUTER_RATINGS, KindRating, rate_match
-from server.rooms.clock import ManualClock
 from server.store.players import PlayerRows, RatingRecord
 from tests.support.games import BREAK_MESSAGE
 from tests.support.live import live_server
@@ -47,26 +47,15 @@ class Visitor:
         )
 
 
-@pytest.fixture
-def clock() -> ManualClock:
-    return ManualClock()
-
-
-@pytest.fixture
-def client(settings: Settings, clock: ManualClock) -> Iterator[TestClient]:
-    with TestClient(app_with(settings, clock=clock.clock)) as c:
-        yield c
-
-
-def test_a_first_visit_makes_a_profile_that_a_reload_keeps(client):
-    ana = Visitor(client)
+def test_a_first_visit_makes_a_profile_that_a_reload_keeps(clocked_client):
+    ana = Visitor(clocked_client)
     cookie = ana.set_cookie.lower()
     assert "httponly" in cookie and "samesite=lax" in cookie and "path=/" in cookie
     again = ana.call("GET", "/api/players/me")
     assert again.status_code == 200 and again.json()["id"] == ana.id
     assert "set-cookie" not in again.headers
-    assert Visitor(client).id != ana.id  # another browser, another player
-    shown = client.get(f"/api/players/{ana.id}").json()
+    assert Visitor(clocked_client).id != ana.id  # another browser, another player
+    shown = clocked_client.get(f"/api/players/{ana.id}").json()
     assert (shown["id"], shown["name"], shown["me"]) == (ana.id, ana.profile["name"], False)
     ratings = {r["game"]: r for r in shown["ratings"]}
     assert ratings["eight_ball"] == {
@@ -78,16 +67,16 @@ def test_a_first_visit_makes_a_profile_that_a_reload_keeps(client):
         "games": 0,
         "wins": 0,
     }
-    assert client.get("/api/players/nobody").status_code == 404
+    assert clocked_client.get("/api/players/nobody").status_code == 404
 
 
-def test_a_forged_cookie_is_a_stranger(client):
-    response = client.get("/api/playnow", headers={"Cookie": f"{COOKIE}={'x' * 43}"})
+def test_a_forged_cookie_is_a_stranger(clocked_client):
+    response = clocked_client.get("/api/playnow", headers={"Cookie": f"{COOKIE}={'x' * 43}"})
     assert response.status_code == 401 and response.json()["detail"]["code"] == "no_player"
 
 
-def test_names_are_checked_and_kept_as_text(client):
-    ana = Visitor(client)
+def test_names_are_checked_and_kept_as_text(clocked_client):
+    ana = Visitor(clocked_client)
     renamed = ana.call("PATCH", "/api/players/me", json={"name": "  <b>Ana</b> "})
     assert renamed.status_code == 200 and renamed.json()["name"] == "<b>Ana</b>"
     for bad in ["   ", "x" * 25, "tab\there"]:
@@ -96,15 +85,15 @@ def test_names_are_checked_and_kept_as_text(client):
     assert ana.call("GET", "/api/players/me").json()["name"] == "<b>Ana</b>"
 
 
-def test_a_player_joining_a_room_again_gets_the_same_seat(client):
-    room_id = create_room(client)
-    ana, ben = Visitor(client), Visitor(client)
+def test_a_player_joining_a_room_again_gets_the_same_seat(clocked_client):
+    room_id = create_room(clocked_client)
+    ana, ben = Visitor(clocked_client), Visitor(clocked_client)
     first = ana.call("POST", f"/api/rooms/{room_id}/join", json={"name": "Ana"}).json()
     again = ana.call("POST", f"/api/rooms/{room_id}/join", json={"name": "Ana"}).json()
     assert (again["seat"], again["token"]) == (first["seat"], first["token"]) == (0, first["token"])
     other = ben.call("POST", f"/api/rooms/{room_id}/join", json={"name": "Ben"}).json()
     assert other["seat"] == 1 and other["token"] != first["token"]
-    with connect(client, room_id, first["token"]) as ws:
+    with connect(clocked_client, room_id, first["token"]) as ws:
         assert ws.receive_json()["seat"] == 0
 
 
@@ -117,14 +106,24 @@ def break_rack(breaker: Any, other: Any) -> None:
         receive_until(ws, "state")
 
 
-def test_matches_in_the_players_seats_go_on_the_profile(client):
-    room_id = create_room(client, race_to=2)
-    ana, ben = Visitor(client), Visitor(client)
-    a = ana.call("POST", f"/api/rooms/{room_id}/join", json={"name": "Ana"}).json()
-    b = client.post(f"/api/rooms/{room_id}/join", json={"name": "Ben"}).json()  # no profile
+@contextmanager
+def at_the_table(
+    client: TestClient, room_id: str, a: dict, b: dict
+) -> Iterator[tuple[WebSocketTestSession, WebSocketTestSession]]:
+    """The sockets of the players seated by the joins `a` and `b`, each read up to its first
+    `state`."""
     with connect(client, room_id, a["token"]) as wa, connect(client, room_id, b["token"]) as wb:
         receive_until(wa, "state")
         receive_until(wb, "state")
+        yield wa, wb
+
+
+def test_matches_in_the_players_seats_go_on_the_profile(clocked_client):
+    room_id = create_room(clocked_client, race_to=2)
+    ana, ben = Visitor(clocked_client), Visitor(clocked_client)
+    a = ana.call("POST", f"/api/rooms/{room_id}/join", json={"name": "Ana"}).json()
+    b = clocked_client.post(f"/api/rooms/{room_id}/join", json={"name": "Ben"}).json()  # no profile
+    with at_the_table(clocked_client, room_id, a, b) as (wa, wb):
         break_rack(wa, wb)
         wb.send_json({"type": "concede"})
         state_where(wa, lambda s: s["match"]["score"] == [1, 0])
@@ -141,7 +140,7 @@ def test_matches_in_the_players_seats_go_on_the_profile(client):
         "replay": f"/m/{played['match_id']}",
     }
     assert ben.call("GET", "/api/players/me").json()["matches"] == []
-    assert client.get(f"/api/matches/{played['match_id']}").json()["room_id"] == room_id
+    assert clocked_client.get(f"/api/matches/{played['match_id']}").json()["room_id"] == room_id
 
 
 def play_now(visitor: Visitor, game: str = "eight_ball") -> dict:
@@ -150,8 +149,8 @@ def play_now(visitor: Visitor, game: str = "eight_ball") -> dict:
     return response.json()
 
 
-def test_play_now_pairs_two_players_into_one_new_room_as_opponents(client):
-    ana, ben = Visitor(client), Visitor(client)
+def test_play_now_pairs_two_players_into_one_new_room_as_opponents(clocked_client):
+    ana, ben = Visitor(clocked_client), Visitor(clocked_client)
     waiting = play_now(ana)
     assert waiting["status"] == "waiting" and waiting["computer"] is None
     assert waiting["rating"] == 1500 and waiting["window"] == 100
@@ -163,12 +162,12 @@ def test_play_now_pairs_two_players_into_one_new_room_as_opponents(client):
     assert a["room_id"] == b["room_id"] and (a["seat"], b["seat"]) == (0, 1)
     assert a["ranked"] and a["url"] == f"/r/{a['room_id']}"
     assert (a["opponent"], b["opponent"]) == (ben.profile["name"], ana.profile["name"])
-    room = client.get(f"/api/rooms/{a['room_id']}").json()
+    room = clocked_client.get(f"/api/rooms/{a['room_id']}").json()
     assert room["players"] == [ana.profile["name"], ben.profile["name"]]
     assert room["status"] == "playing"
     with (
-        connect(client, a["room_id"], a["token"]) as wa,
-        connect(client, b["room_id"], b["token"]) as wb,
+        connect(clocked_client, a["room_id"], a["token"]) as wa,
+        connect(clocked_client, b["room_id"], b["token"]) as wb,
     ):
         assert (wa.receive_json()["seat"], wb.receive_json()["seat"]) == (0, 1)
     # The same tokens come back from the room's own join: the seat is the player's.
@@ -176,12 +175,12 @@ def test_play_now_pairs_two_players_into_one_new_room_as_opponents(client):
     assert (rejoin["seat"], rejoin["token"]) == (1, b["token"])
 
 
-def test_one_queue_entry_per_player_and_nobody_plays_themselves(client):
-    ana = Visitor(client)
+def test_one_queue_entry_per_player_and_nobody_plays_themselves(clocked_client):
+    ana = Visitor(clocked_client)
     assert play_now(ana)["status"] == "waiting"
     assert play_now(ana)["status"] == "waiting"  # a second tab: the same one place
     assert play_now(ana, "nine_ball")["game"] == "nine_ball"  # moved, not doubled
-    ben = Visitor(client)
+    ben = Visitor(clocked_client)
     assert play_now(ben, "eight_ball")["status"] == "waiting"  # ana left eight-ball
     left = ana.call("DELETE", "/api/playnow").json()
     assert left == {**left, "status": "idle"}
@@ -194,23 +193,23 @@ def wave(client: TestClient) -> int:
     return client.portal.call(client.app.state.matchmaker.wave)
 
 
-def test_the_window_widens_until_distant_ratings_meet(client, settings, clock):
-    store = client.app.state.store
-    ana, ben = Visitor(client), Visitor(client)
+def test_the_window_widens_until_distant_ratings_meet(clocked_client, settings, clock):
+    store = clocked_client.app.state.store
+    ana, ben = Visitor(clocked_client), Visitor(clocked_client)
     strong = RatingRecord(ben.id, "eight_ball", 1850.0, 60.0, 0.06, 40, 30, clock.now)
     store.run(lambda repo: PlayerRows(repo).save_rating(strong))
     play_now(ana)
     assert play_now(ben)["status"] == "waiting"  # 350 apart; the window is 100
     clock.advance(12.0)  # 100 + 20/s * 12 s = 340
-    wave(client)
+    wave(clocked_client)
     assert ben.call("GET", "/api/playnow").json()["window"] == pytest.approx(340)
     clock.advance(1.0)  # 360
-    wave(client)  # (or the server's own wave, if it came first)
+    wave(clocked_client)  # (or the server's own wave, if it came first)
     assert ana.call("GET", "/api/playnow").json()["status"] == "matched"
 
 
-def test_nobody_suitable_for_20_seconds_offers_the_computer(client, clock):
-    ana = Visitor(client)
+def test_nobody_suitable_for_20_seconds_offers_the_computer(clocked_client, clock):
+    ana = Visitor(clocked_client)
     play_now(ana)
     early = ana.call("POST", "/api/playnow/computer")
     assert early.status_code == 409 and early.json()["detail"]["code"] == "not_offered"
@@ -223,47 +222,47 @@ def test_nobody_suitable_for_20_seconds_offers_the_computer(client, clock):
     assert taken["status"] == "matched" and taken["computer"] == "amateur"
     seat = taken["room"]
     assert not seat["ranked"] and seat["opponent"] == "Computer (amateur)"
-    room = client.get(f"/api/rooms/{seat['room_id']}").json()
+    room = clocked_client.get(f"/api/rooms/{seat['room_id']}").json()
     assert room["players"][seat["seat"]] == ana.profile["name"] and room["status"] == "playing"
     assert ana.call("GET", "/api/playnow").json()["status"] == "matched"  # until queued again
 
 
-def test_the_long_poll_returns_on_news_only(client, clock):
+def test_the_long_poll_returns_on_news_only(clocked_client, clock):
     """The offer wakes a waiting poll once; after it is shown, a poll waits for the next
     change (pairing, leaving) instead of answering at once in a loop."""
-    ana = Visitor(client)
-    matchmaker = client.app.state.matchmaker
-    assert client.portal is not None
+    ana = Visitor(clocked_client)
+    matchmaker = clocked_client.app.state.matchmaker
+    assert clocked_client.portal is not None
     play_now(ana)
     clock.advance(20.0)
-    news = client.portal.start_task_soon(matchmaker.wait, ana.id, 30.0)
+    news = clocked_client.portal.start_task_soon(matchmaker.wait, ana.id, 30.0)
     news.result(timeout=10)  # the offer is news: answered at once
     assert ana.call("GET", "/api/playnow").json()["computer"] == "amateur"  # now shown
-    quiet = client.portal.start_task_soon(matchmaker.wait, ana.id, 30.0)
-    client.get("/health")  # the server's loop has run meanwhile
+    quiet = clocked_client.portal.start_task_soon(matchmaker.wait, ana.id, 30.0)
+    clocked_client.get("/health")  # the server's loop has run meanwhile
     assert not quiet.done()
     ana.call("DELETE", "/api/playnow")
     quiet.result(timeout=10)  # leaving woke it
 
 
-def test_the_computer_offered_is_the_level_nearest_the_rating(client, clock):
-    ana = Visitor(client)
+def test_the_computer_offered_is_the_level_nearest_the_rating(clocked_client, clock):
+    ana = Visitor(clocked_client)
     strong = RatingRecord(ana.id, "nine_ball", 2050.0, 60.0, 0.06, 40, 30, clock.now)
-    client.app.state.store.run(lambda repo: PlayerRows(repo).save_rating(strong))
+    clocked_client.app.state.store.run(lambda repo: PlayerRows(repo).save_rating(strong))
     play_now(ana, "nine_ball")
     clock.advance(20.0)
     assert ana.call("GET", "/api/playnow").json()["computer"] == "pro"
     assert COMPUTER_RATINGS["pro"] == 2080
 
 
-def test_a_ranked_match_moves_both_ratings_by_glicko2(client, clock):
-    ana, ben = Visitor(client), Visitor(client)
+def test_a_ranked_match_moves_both_ratings_by_glicko2(clocked_client, clock):
+    ana, ben = Visitor(clocked_client), Visitor(clocked_client)
     play_now(ana)
     b = play_now(ben)["room"]
     a = ana.call("GET", "/api/playnow").json()["room"]
     with (
-        connect(client, a["room_id"], a["token"]) as wa,
-        connect(client, b["room_id"], b["token"]) as wb,
+        connect(clocked_client, a["room_id"], a["token"]) as wa,
+        connect(clocked_client, b["room_id"], b["token"]) as wb,
     ):
         receive_until(wa, "state")
         receive_until(wb, "state")
@@ -297,21 +296,21 @@ def test_a_ranked_match_moves_both_ratings_by_glicko2(client, clock):
     assert recent["won"] and recent["opponent"] == ben.profile["name"]
     assert recent["rating_before"] == 1500 and recent["room_id"] == a["room_id"]
     assert recent["replay"] == f"/m/{recent['match_id']}"
-    assert client.get(f"/api/matches/{recent['match_id']}").status_code == 200
+    assert clocked_client.get(f"/api/matches/{recent['match_id']}").status_code == 200
     played = [(m["score"], m["won"]) for m in mine["matches"]]
     assert played == [([0, 1], False), ([1, 0], True)]  # the rematch, then the ranked match
-    board = client.get("/api/leaderboard/eight_ball").json()
+    board = clocked_client.get("/api/leaderboard/eight_ball").json()
     assert [s["player_id"] for s in board["provisional"]] == [ana.id, ben.id]
     assert board["ranked"] == []
 
 
-def test_a_ranked_match_ended_before_any_shot_is_not_rated(client):
+def test_a_ranked_match_ended_before_any_shot_is_not_rated(clocked_client):
     """A no-show forfeits the frame when the grace ends; a concession before the break
     is the same: no shot, no rating (the history marks the match abandoned)."""
-    ana, ben = Visitor(client), Visitor(client)
+    ana, ben = Visitor(clocked_client), Visitor(clocked_client)
     play_now(ana)
     b = play_now(ben)["room"]
-    with connect(client, b["room_id"], b["token"]) as wb:
+    with connect(clocked_client, b["room_id"], b["token"]) as wb:
         receive_until(wb, "state")
         wb.send_json({"type": "concede"})
         state_where(wb, lambda s: s["match"]["match_over"])
@@ -319,11 +318,11 @@ def test_a_ranked_match_ended_before_any_shot_is_not_rated(client):
         profile = player.call("GET", "/api/players/me").json()
         assert [r["games"] for r in profile["ratings"]] == [0, 0]
         assert profile["recent"] == []
-    assert client.get("/api/leaderboard/eight_ball").json()["provisional"] == []
+    assert clocked_client.get("/api/leaderboard/eight_ball").json()["provisional"] == []
 
 
-def test_the_leaderboard_orders_by_rating_minus_two_deviations(client, clock):
-    people = {name: Visitor(client) for name in ["sure", "unsure", "low", "new"]}
+def test_the_leaderboard_orders_by_rating_minus_two_deviations(clocked_client, clock):
+    people = {name: Visitor(clocked_client) for name in ["sure", "unsure", "low", "new"]}
     rows = {
         "unsure": (1900.0, 100.0, 12),  # 1700
         "sure": (1800.0, 40.0, 60),  # 1720
@@ -334,16 +333,16 @@ def test_the_leaderboard_orders_by_rating_minus_two_deviations(client, clock):
         visitor = people[name]
         visitor.call("PATCH", "/api/players/me", json={"name": name})
         record = RatingRecord(visitor.id, "eight_ball", rating, rd, 0.06, games, 0, clock.now)
-        client.app.state.store.run(lambda repo, r=record: PlayerRows(repo).save_rating(r))
-    board = client.get("/api/leaderboard/eight_ball").json()
+        clocked_client.app.state.store.run(lambda repo, r=record: PlayerRows(repo).save_rating(r))
+    board = clocked_client.get("/api/leaderboard/eight_ball").json()
     assert [(s["rank"], s["name"], s["rating"], s["games"]) for s in board["ranked"]] == [
         (1, "sure", 1720.0, 60),
         (2, "unsure", 1700.0, 12),
         (3, "low", 1300.0, 30),
     ]
     assert [(s["rank"], s["name"]) for s in board["provisional"]] == [(None, "new")]
-    assert client.get("/api/leaderboard/nine_ball").json()["ranked"] == []
-    assert client.get("/api/leaderboard/practice").status_code == 422
+    assert clocked_client.get("/api/leaderboard/nine_ball").json()["ranked"] == []
+    assert clocked_client.get("/api/leaderboard/practice").status_code == 422
 
 
 def test_joining_and_leaving_the_queue_is_rate_limited(settings, clock):
@@ -366,10 +365,10 @@ def test_new_profiles_are_rate_limited_per_address(settings, clock):
         assert refused.status_code == 429 and "set-cookie" not in refused.headers
 
 
-def test_play_now_without_a_profile_is_refused(client):
-    response = client.post("/api/playnow", json={"game": "eight_ball"})
+def test_play_now_without_a_profile_is_refused(clocked_client):
+    response = clocked_client.post("/api/playnow", json={"game": "eight_ball"})
     assert response.status_code == 401
-    ana = Visitor(client)
+    ana = Visitor(clocked_client)
     bad = ana.call("POST", "/api/playnow", json={"game": "practice"})
     assert bad.status_code == 422
 

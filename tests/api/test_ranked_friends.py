@@ -3,28 +3,12 @@ on the new room, each player again with `ranked: true` on their join."""
 
 from __future__ import annotations
 
-from collections.abc import Iterator
-
 import pytest
-from fastapi.testclient import TestClient
 
-from server.config import Settings
 from server.players import KindRating, rate_match
-from server.rooms.clock import ManualClock
-from tests.api.test_players import Visitor, break_rack
-from tests.support.messages import receive_until, state_where
-from tests.support.rooms import app_with, connect, create_room
-
-
-@pytest.fixture
-def clock() -> ManualClock:
-    return ManualClock()
-
-
-@pytest.fixture
-def client(settings: Settings, clock: ManualClock) -> Iterator[TestClient]:
-    with TestClient(app_with(settings, clock=clock.clock)) as c:
-        yield c
+from tests.api.test_players import Visitor, at_the_table, break_rack
+from tests.support.messages import state_where
+from tests.support.rooms import create_room
 
 
 def ranked_room(creator: Visitor, game: str = "eight_ball") -> str:
@@ -47,17 +31,17 @@ def eight_ball(visitor: Visitor) -> dict:
     return dict(next(r for r in profile["ratings"] if r["game"] == "eight_ball"))
 
 
-def test_a_ranked_friends_table_moves_both_ratings_by_glicko2(client, clock):
-    ana, ben = Visitor(client), Visitor(client)
+def test_a_ranked_friends_table_moves_both_ratings_by_glicko2(clocked_client, clock):
+    ana, ben = Visitor(clocked_client), Visitor(clocked_client)
     room_id = ranked_room(ana)
-    assert client.get(f"/api/rooms/{room_id}").json()["ranked"] is True
-    (listed,) = [r for r in client.get("/api/rooms").json()["rooms"] if r["room_id"] == room_id]
+    assert clocked_client.get(f"/api/rooms/{room_id}").json()["ranked"] is True
+    (listed,) = [
+        r for r in clocked_client.get("/api/rooms").json()["rooms"] if r["room_id"] == room_id
+    ]
     assert listed["ranked"] is True
     a = sit(ana, room_id, "Ana")
     b = sit(ben, room_id, "Ben")
-    with connect(client, room_id, a["token"]) as wa, connect(client, room_id, b["token"]) as wb:
-        receive_until(wa, "state")
-        receive_until(wb, "state")
+    with at_the_table(clocked_client, room_id, a, b) as (wa, wb):
         break_rack(wa, wb)
         wb.send_json({"type": "concede"})
         state_where(wa, lambda s: s["match"]["match_over"] and s["match"]["match_winner"] == 0)
@@ -80,32 +64,30 @@ def test_a_ranked_friends_table_moves_both_ratings_by_glicko2(client, clock):
     assert recent["room_id"] == room_id and recent["opponent"] == ben.profile["name"]
 
 
-def test_a_join_without_agreement_is_refused_and_seats_nobody(client):
-    ana, ben = Visitor(client), Visitor(client)
+def test_a_join_without_agreement_is_refused_and_seats_nobody(clocked_client):
+    ana, ben = Visitor(clocked_client), Visitor(clocked_client)
     room_id = ranked_room(ana)
     sit(ana, room_id, "Ana")
     refused = [
         ben.call("POST", f"/api/rooms/{room_id}/join", json={"name": "Ben"}),
         ben.call("POST", f"/api/rooms/{room_id}/join", json={"name": "Ben", "ranked": False}),
-        client.post(f"/api/rooms/{room_id}/join", json={"name": "Cy", "ranked": True}),
+        clocked_client.post(f"/api/rooms/{room_id}/join", json={"name": "Cy", "ranked": True}),
     ]
     for response in refused:
         assert response.status_code == 409, response.text
         assert response.json()["detail"]["code"] == "ranked_needs_agreement"
-    assert client.get(f"/api/rooms/{room_id}").json()["players"] == ["Ana", None]
+    assert clocked_client.get(f"/api/rooms/{room_id}").json()["players"] == ["Ana", None]
     sit(ben, room_id, "Ben")  # agreeing now seats them
-    assert client.get(f"/api/rooms/{room_id}").json()["players"] == ["Ana", "Ben"]
+    assert clocked_client.get(f"/api/rooms/{room_id}").json()["players"] == ["Ana", "Ben"]
 
 
-def test_an_unranked_friends_table_changes_no_rating(client):
-    ana, ben = Visitor(client), Visitor(client)
-    room_id = create_room(client)
-    assert client.get(f"/api/rooms/{room_id}").json()["ranked"] is False
+def test_an_unranked_friends_table_changes_no_rating(clocked_client):
+    ana, ben = Visitor(clocked_client), Visitor(clocked_client)
+    room_id = create_room(clocked_client)
+    assert clocked_client.get(f"/api/rooms/{room_id}").json()["ranked"] is False
     a = sit(ana, room_id, "Ana")  # agreeing to an unranked table changes nothing
     b = sit(ben, room_id, "Ben")
-    with connect(client, room_id, a["token"]) as wa, connect(client, room_id, b["token"]) as wb:
-        receive_until(wa, "state")
-        receive_until(wb, "state")
+    with at_the_table(clocked_client, room_id, a, b) as (wa, wb):
         break_rack(wa, wb)
         wb.send_json({"type": "concede"})
         state_where(wa, lambda s: s["match"]["match_over"])
@@ -114,8 +96,8 @@ def test_an_unranked_friends_table_changes_no_rating(client):
         assert player.call("GET", "/api/players/me").json()["recent"] == []
 
 
-def test_practice_the_computer_and_strangers_cannot_open_a_ranked_table(client):
-    ana = Visitor(client)
+def test_practice_the_computer_and_strangers_cannot_open_a_ranked_table(clocked_client):
+    ana = Visitor(clocked_client)
     for body, status, code in [
         ({"game": "practice", "ranked": True}, 422, "bad_ranked"),
         ({"game": "nine_ball", "ranked": True, "opponent": "pro"}, 422, "bad_ranked"),
@@ -123,6 +105,6 @@ def test_practice_the_computer_and_strangers_cannot_open_a_ranked_table(client):
         response = ana.call("POST", "/api/rooms", json=body)
         assert response.status_code == status, response.text
         assert response.json()["detail"]["code"] == code
-    stranger = client.post("/api/rooms", json={"game": "nine_ball", "ranked": True})
+    stranger = clocked_client.post("/api/rooms", json={"game": "nine_ball", "ranked": True})
     assert stranger.status_code == 401 and stranger.json()["detail"]["code"] == "no_player"
-    assert client.get("/api/rooms").json()["total"] == 0  # nothing opened
+    assert clocked_client.get("/api/rooms").json()["total"] == 0  # nothing opened

@@ -1,5 +1,6 @@
 """Several real `python -m server` processes sharing a private Redis and one database: the
-cluster as it runs in production, on free loopback ports (helpers in `servers`)."""
+cluster as it runs in production, on free loopback ports (helpers in `servers`, `sockets`
+and `takeover`)."""
 
 from __future__ import annotations
 

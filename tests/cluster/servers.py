@@ -23,6 +23,7 @@ BASE: dict[str, object] = {
     "max_rooms_per_client": 100_000,
     "room_create_rate": "100000/minute",
     "join_rate": "100000/minute",
+    "watch_rate": "100000/minute",
     "lease_ttl": 3.0,
     "heartbeat": 0.5,
     "rpc_timeout": 3.0,

@@ -11,16 +11,13 @@ on a foul and Ana, with ball in hand, plays the third shot."""
 from __future__ import annotations
 
 import asyncio
-import time
 
 import httpx
 import pytest
 import websockets
-from websockets.exceptions import ConnectionClosed
 
 from tests.support.games import (
     NINE_BALL,
-    NINE_BALL_BREAK,
     NINE_BALL_FOUL,
     NINE_BALL_FOUL_BALL,
     NINE_BALL_PLACE,
@@ -29,56 +26,25 @@ from tests.support.games import (
 
 from .servers import Server, ServerSet
 from .sockets import connect, place_cue, recv, send, until
+from .takeover import all_closed, break_and_place, moved, seated
 
 pytestmark = pytest.mark.timeout(360)
 THIRD_SHOT = {"type": "shoot", "angle": 2.5, "speed": 2.0}
 FAILOVER_WITHIN = 15.0  # s, from the kill to the room answering on another process
 
 
-async def all_closed(sockets) -> None:
-    async def closed(ws) -> None:
-        try:
-            while True:
-                await recv(ws, 30)
-        except ConnectionClosed:
-            return
-
-    await asyncio.gather(*(closed(ws) for ws in sockets))
-
-
-def moved(server: Server, room: str, old_url: str, within: float) -> tuple[dict, float]:
-    """Ask `server` about `room` until another process plays it: its answer and how long
-    that took."""
-    start = time.monotonic()
-    with server.http() as client:
-        while True:
-            reply = client.get(f"/api/rooms/{room}")
-            if reply.status_code == 200 and reply.json()["ws_url"] != old_url:
-                return reply.json(), time.monotonic() - start
-            assert reply.status_code in (200, 503), reply.text
-            assert time.monotonic() - start < within, "the room was not taken over in time"
-            time.sleep(0.1)
-
-
 def test_a_room_survives_its_server_killed_mid_shot(servers) -> None:
     group: ServerSet = servers(3, rack_seed=NINE_BALL, pace=1.0)
     first, second, _ = group.all
-    with first.http() as one, second.http() as two:
-        created = one.post("/api/rooms", json={"game": "nine_ball", "race_to": 2, "shot_clock": 0})
-        assert created.status_code == 201, created.text
-        room = created.json()["room_id"]
+    room, url, ana, ben = seated(first, second, race_to=2)
+    with second.http() as two:
         listed = two.get("/api/rooms").json()
-        assert [r["room_id"] for r in listed["rooms"]] == [room] and listed["total"] == 1
-        ana = two.post(f"/api/rooms/{room}/join", json={"name": "Ana"}).json()
-        ben = two.post(f"/api/rooms/{room}/join", json={"name": "Ben"}).json()
-    assert (ana["seat"], ben["seat"]) == (0, 1)
-    url = created.json()["ws_url"]
-    assert ana["ws_url"] == ben["ws_url"] == url
+    assert [r["room_id"] for r in listed["rooms"]] == [room] and listed["total"] == 1
     owner = group.by_url(url)
 
     loop = asyncio.new_event_loop()
     try:
-        seen = loop.run_until_complete(before_the_kill(url, ana["token"], ben["token"]))
+        seen = loop.run_until_complete(before_the_kill(url, ana, ben))
         with owner.http() as client:  # the second shot is rolling on its owner ...
             assert client.get(f"/api/rooms/{room}").json()["state"]["phase"] == "rolling"
         owner.kill()  # ... which dies now
@@ -89,7 +55,7 @@ def test_a_room_survives_its_server_killed_mid_shot(servers) -> None:
         new_url = detail["ws_url"]
         assert group.by_url(new_url) in group.others(owner)
         assert detail["players"] == ["Ana", "Ben"]
-        loop.run_until_complete(after_the_kill(new_url, ana["token"], ben["token"], seen))
+        loop.run_until_complete(after_the_kill(new_url, ana, ben, seen))
         history(survivor, room)
     finally:
         loop.close()
@@ -98,13 +64,7 @@ def test_a_room_survives_its_server_killed_mid_shot(servers) -> None:
 async def before_the_kill(url: str, ana: str, ben: str) -> dict:
     """The break (a scratch), Ben's cue ball placed, his shot struck and its stream
     begun."""
-    a, _, _ = await connect(url, ana)
-    b, _, _ = await connect(url, ben)
-    await send(a, shoot_message(NINE_BALL_BREAK))
-    stream = await until(b, "state")
-    result = next(m for m in stream if m["type"] == "shot_result")
-    assert [f["code"] for f in result["outcome"]["fouls"]] == ["scratch"]
-    placed = await place_cue(b, *NINE_BALL_PLACE)
+    a, b, placed = await break_and_place(url, ana, ben)
     await send(b, shoot_message(NINE_BALL_FOUL))
     while (await recv(b))["type"] in ("state", "presence", "aim"):
         pass  # up to the first message of the shot's motion

@@ -13,47 +13,19 @@ import time
 
 import pytest
 
-from tests.support.games import (
-    NINE_BALL,
-    NINE_BALL_BREAK,
-    NINE_BALL_FOUL,
-    NINE_BALL_FOUL_BALL,
-    NINE_BALL_PLACE,
-    shoot_message,
-)
+from tests.support.games import NINE_BALL, NINE_BALL_FOUL, NINE_BALL_FOUL_BALL, shoot_message
 
-from .servers import Server, ServerSet
-from .sockets import connect, place_cue, recv, send, until
-from .test_failover import all_closed, moved
+from .servers import ServerSet
+from .sockets import connect, recv, send, until
+from .takeover import all_closed, break_and_place, moved, seated
 
 pytestmark = pytest.mark.timeout(360)
-
-
-def seated(group: ServerSet, through: Server) -> tuple[str, str, str, str]:
-    """A 9-ball room opened and joined through `through`: (room, ws_url, Ana's token,
-    Ben's token)."""
-    with through.http() as client:
-        created = client.post("/api/rooms", json={"game": "nine_ball", "shot_clock": 0})
-        room = created.json()["room_id"]
-        ana = client.post(f"/api/rooms/{room}/join", json={"name": "Ana"}).json()
-        ben = client.post(f"/api/rooms/{room}/join", json={"name": "Ben"}).json()
-    return room, created.json()["ws_url"], ana["token"], ben["token"]
-
-
-async def break_and_place(url: str, ana: str, ben: str) -> tuple:
-    """The break (a scratch) and Ben's cue ball in hand placed: the sockets and the state."""
-    a, _, _ = await connect(url, ana)
-    b, _, _ = await connect(url, ben)
-    await send(a, shoot_message(NINE_BALL_BREAK))
-    assert any(m["type"] == "shot_result" for m in await until(b, "state"))
-    placed = await place_cue(b, *NINE_BALL_PLACE)
-    return a, b, placed
 
 
 def test_sigterm_hands_the_rooms_over_at_once(servers) -> None:
     # leases of 30 s: a room waiting for its lease to expire would wait that long
     group: ServerSet = servers(3, rack_seed=NINE_BALL, lease_ttl=30.0)
-    room, url, ana, ben = seated(group, group.all[0])
+    room, url, ana, ben = seated(group.all[0])
     owner = group.by_url(url)
     loop = asyncio.new_event_loop()
     try:
@@ -85,7 +57,7 @@ def test_sigterm_hands_the_rooms_over_at_once(servers) -> None:
 
 def test_a_paused_owner_is_refused_when_it_wakes(servers) -> None:
     group: ServerSet = servers(2, rack_seed=NINE_BALL, pace=1.0, lease_ttl=2.0)
-    room, url, ana, ben = seated(group, group.all[0])
+    room, url, ana, ben = seated(group.all[0])
     owner = group.by_url(url)
     other = group.others(owner)[0]
     loop = asyncio.new_event_loop()

@@ -1,14 +1,17 @@
-"""What the browser tests do with a page: real mouse input, reads of the canvas pixels."""
+"""What the browser tests do with a page: the lobby's steps, real mouse input, reads of the
+canvas pixels."""
 
 from __future__ import annotations
 
 import hashlib
+import re
 import time
 
-from playwright.sync_api import Error, Page
+from playwright.sync_api import Error, Locator, Page
 
 READY = "window.__pool && window.__pool.ready"
 POLL_MS = 50
+TABLE_PAGE = re.compile(r"/r/[A-Za-z0-9_-]+$")
 
 
 def wait_for(page: Page, expression: str, arg: object = None, timeout: float = 30_000) -> None:
@@ -37,6 +40,21 @@ def _evaluate(page: Page, expression: str, arg: object) -> object:
 def wait_ready(page: Page, phase: str | None = None, timeout: float = 30_000) -> None:
     cond = READY + (f" && window.__pool.state.phase === '{phase}'" if phase else "")
     wait_for(page, cond, timeout=timeout)
+
+
+def create_table(page: Page) -> str:
+    """Press the lobby's create button (the form filled in already) and wait until the new
+    table's page waits for an opponent: the room's id."""
+    page.get_by_test_id("create-room").click()
+    page.wait_for_url(TABLE_PAGE)
+    room_id = page.url.rsplit("/", 1)[1]
+    wait_ready(page, "waiting")
+    return room_id
+
+
+def lobby_row(page: Page, room_id: str) -> Locator:
+    """The lobby's row of the table `room_id` (with its join and watch buttons)."""
+    return page.locator(f"li[data-room='{room_id}']")
 
 
 def table_point(page: Page, x: float, y: float) -> tuple[float, float]:

@@ -7,7 +7,7 @@ import re
 
 from playwright.sync_api import expect
 
-from .helpers import table_point, wait_for, wait_ready
+from .helpers import create_table, lobby_row, table_point, wait_for, wait_ready
 
 
 def test_lobby_lists_tables_to_join_or_watch_and_remembers_the_name(base_url, new_page):
@@ -17,20 +17,17 @@ def test_lobby_lists_tables_to_join_or_watch_and_remembers_the_name(base_url, ne
     expect(ana.get_by_test_id("lobby-error")).to_contain_text("name")  # no name, no table
     ana.get_by_test_id("name").fill("Ana")
     ana.get_by_test_id("game-select").select_option("nine_ball")
-    ana.get_by_test_id("create-room").click()
-    ana.wait_for_url(re.compile(r"/r/[A-Za-z0-9_-]+$"))
-    room_id = ana.url.rsplit("/", 1)[1]
-    wait_ready(ana, "waiting")
+    room_id = create_table(ana)
 
     ben = new_page()
     ben.goto(base_url + "/")
-    row = ben.locator(f"li[data-room='{room_id}']")
+    row = lobby_row(ben, room_id)
     expect(row).to_contain_text("9-ball")
     expect(row).to_contain_text("Ana vs free seat")
     ben.get_by_test_id("name").fill("Ben")
     ben.reload()
     expect(ben.get_by_test_id("name")).to_have_value("Ben")  # remembered
-    ben.locator(f"li[data-room='{room_id}']").get_by_test_id("join").click()
+    lobby_row(ben, room_id).get_by_test_id("join").click()
     ben.wait_for_url(re.compile(f"/r/{room_id}$"))
     wait_ready(ben, "aiming")
     expect(ben.get_by_test_id("role")).to_have_text("seat 2")
@@ -40,7 +37,7 @@ def test_lobby_lists_tables_to_join_or_watch_and_remembers_the_name(base_url, ne
     # The table is full now: the lobby offers only to watch it.
     carl = new_page()
     carl.goto(base_url + "/")
-    full = carl.locator(f"li[data-room='{room_id}']")
+    full = lobby_row(carl, room_id)
     expect(full).to_contain_text("Ana vs Ben")
     expect(full.get_by_test_id("join")).to_have_count(0)
     full.get_by_test_id("watch").click()
@@ -91,17 +88,14 @@ def test_a_private_table_plays_under_the_security_policy(base_url, new_page):
     assert "script-src 'self'" in response.headers["content-security-policy"]
     ana.get_by_test_id("name").fill("Ana")
     ana.get_by_test_id("private-table").check()
-    ana.get_by_test_id("create-room").click()
-    ana.wait_for_url(re.compile(r"/r/[A-Za-z0-9_-]+$"))
-    room_id = ana.url.rsplit("/", 1)[1]
-    wait_ready(ana, "waiting")
+    room_id = create_table(ana)
 
     ben = new_page()
     ben.add_init_script(CATCH_VIOLATIONS)
     ben.goto(base_url + "/")
     ben.get_by_test_id("name").fill("Ben")
     expect(ben.get_by_test_id("rooms")).not_to_contain_text("Ana vs free seat")
-    assert ben.locator(f"li[data-room='{room_id}']").count() == 0
+    assert lobby_row(ben, room_id).count() == 0
     ben.goto(f"{base_url}/r/{room_id}")  # the link Ana sent
     ben.get_by_test_id("join-name").fill("Ben")
     ben.get_by_test_id("join").click()

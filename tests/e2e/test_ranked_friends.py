@@ -7,7 +7,7 @@ import re
 
 from playwright.sync_api import expect
 
-from .helpers import wait_ready
+from .helpers import create_table, lobby_row, wait_ready
 
 
 def test_a_ranked_table_asks_the_friend_to_agree_before_seating_them(base_url, new_page):
@@ -20,14 +20,11 @@ def test_a_ranked_table_asks_the_friend_to_agree_before_seating_them(base_url, n
     expect(ranked).to_be_enabled()
     ana.get_by_test_id("name").fill("Ana")
     ranked.check()
-    ana.get_by_test_id("create-room").click()
-    ana.wait_for_url(re.compile(r"/r/[A-Za-z0-9_-]+$"))
-    room_id = ana.url.rsplit("/", 1)[1]
-    wait_ready(ana, "waiting")
+    room_id = create_table(ana)
 
     ben = new_page()
     ben.goto(base_url + "/")
-    row = ben.locator(f"li[data-room='{room_id}']")
+    row = lobby_row(ben, room_id)
     expect(row).to_contain_text("9-ball · race to 3 · ranked")
     ben.get_by_test_id("name").fill("Ben")
     row.get_by_test_id("join").click()  # a ranked table: its page asks first

@@ -1,6 +1,11 @@
 """A crowd in one room while two players play on a real server: 150 spectators chatting
 and 30 reconnecting in a loop close no player socket, and every shot's result reaches both
-players. (How late frames get under such a crowd is measured by `python -m bench.crowd`.)"""
+players; one address reconnecting in a loop is refused past its quota. (How late the
+players' tables start under such a crowd is measured by `python -m bench.crowd`.)
+
+Each member of a crowd connects from a loopback address of its own (127.0.x.y all reach
+this machine), as the people of a real crowd would: the per-address quota of spectator
+sockets is tested on its own."""
 
 from __future__ import annotations
 
@@ -11,7 +16,7 @@ from urllib.request import Request, urlopen
 
 import pytest
 from websockets.asyncio.client import connect
-from websockets.exceptions import ConnectionClosed
+from websockets.exceptions import ConnectionClosed, InvalidStatus
 
 from server.app import create_app
 from server.config import Settings
@@ -74,23 +79,31 @@ async def player(
         closes.append((exc.rcvd.code, exc.rcvd.reason) if exc.rcvd else None)
 
 
+def fan_address(i: int) -> tuple[str, int]:
+    """A source address of its own for the `i`th member of a crowd (any free port)."""
+    return (f"127.0.{1 + i // 250}.{1 + i % 250}", 0)
+
+
 async def chatter(url: str, stop: asyncio.Event, i: int) -> None:
-    async with connect(url) as ws:
+    async with connect(url, local_addr=fan_address(i)) as ws:
         n = 0
         while not stop.is_set():
             await ws.send(json.dumps({"type": "chat", "text": f"fan {i} says {n}"}))
             n += 1
-            try:
+            try:  # as fast as a spectator may (2 messages a second), reading meanwhile
                 while True:
-                    await asyncio.wait_for(ws.recv(), 0.2)
+                    await asyncio.wait_for(ws.recv(), 0.55)
             except TimeoutError:
                 pass
 
 
-async def churner(url: str, stop: asyncio.Event) -> None:
+async def churner(url: str, stop: asyncio.Event, i: int) -> None:
     while not stop.is_set():
-        async with connect(url) as ws:
-            await ws.recv()
+        try:
+            async with connect(url, local_addr=fan_address(i)) as ws:
+                await ws.recv()
+        except InvalidStatus:  # past this address's quota: refused, after a delay
+            pass
 
 
 class Players:
@@ -122,7 +135,7 @@ async def crowd(address: str, room_id: str, tokens: list[str]) -> tuple[list[int
     players = Players(base, tokens)
     stop = players.stop
     fans = [asyncio.create_task(chatter(base, stop, i)) for i in range(CHATTERS)]
-    fans += [asyncio.create_task(churner(base, stop)) for _ in range(CHURNERS)]
+    fans += [asyncio.create_task(churner(base, stop, CHATTERS + i)) for i in range(CHURNERS)]
     await asyncio.sleep(2.0)  # the crowd is in
     players.plays.set()
     await players.until(2 * SHOTS)
@@ -169,11 +182,11 @@ async def burst(address: str, room_id: str, tokens: list[str]) -> tuple[list[int
     frame, while the players play on."""
     base = f"ws://{address}/ws/rooms/{room_id}"
     players = Players(base, tokens)
-    fans = [await connect(base) for _ in range(70)]
+    fans = [await connect(base, local_addr=fan_address(i)) for i in range(70)]
     players.plays.set()
     await asyncio.gather(*(ws.send(json.dumps({"type": "chat", "text": "now!"})) for ws in fans))
-    for _ in range(200):
-        ws = await connect(base)
+    for i in range(200):
+        ws = await connect(base, local_addr=fan_address(70 + i))
         ws.transport.abort()  # gone, no close handshake
     await players.until(4)
     await asyncio.gather(*(ws.close() for ws in fans), return_exceptions=True)
@@ -192,3 +205,37 @@ def test_a_chat_burst_and_a_crowd_vanishing_close_no_player(tmp_path: Path):
     assert closes == []
     shots = sorted(set(results))  # the last one may be stopped between the two players
     assert len(shots) >= 2 and all(results.count(s) == 2 for s in shots[:-1])
+
+
+async def reconnecting(base: str, times: int, address: str) -> list[object]:
+    """Open and close a spectator socket `times` times from `address`: the first message
+    each time, or the refusal's HTTP status."""
+    seen: list[object] = []
+    for _ in range(times):
+        try:
+            async with connect(base, local_addr=(address, 0)) as ws:
+                seen.append(json.loads(await ws.recv())["type"])
+        except InvalidStatus as exc:
+            seen.append(exc.response.status_code)
+    return seen
+
+
+def test_one_address_reconnecting_in_a_loop_is_refused_past_its_quota(tmp_path: Path):
+    settings = Settings(
+        web_dir=tmp_path, db_path=tmp_path / "pool.db", watch_rate="10/minute", shot_clock=0.0
+    )
+    with serving(create_app(settings), settings, bound_socket()) as address:
+        room_id, tokens = seated_on(address)
+        base = f"ws://{address}/ws/rooms/{room_id}"
+
+        async def scenario() -> tuple[list[object], list[object], str]:
+            looping = await reconnecting(base, 14, "127.0.0.1")
+            elsewhere = await reconnecting(base, 1, "127.0.0.2")
+            async with connect(f"{base}?token={tokens[0]}", local_addr=("127.0.0.1", 0)) as ws:
+                player = json.loads(await ws.recv())["type"]
+            return looping, elsewhere, player
+
+        looping, elsewhere, player = asyncio.run(scenario())
+    assert looping == ["welcome"] * 10 + [403] * 4
+    assert elsewhere == ["welcome"]  # another address is not held back
+    assert player == "welcome"  # a player's socket, with its token, is never counted

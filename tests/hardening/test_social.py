@@ -32,6 +32,7 @@ def settings(tmp_path: Path) -> Settings:
         player_chat_burst=4,
         player_chat_per_second=0.01,
         rate_burst=1000,
+        spectator_rate_burst=1000,
     )
 
 
@@ -75,12 +76,15 @@ def test_chat_credits_per_sender_spectators_fewer(client: TestClient):
         for i in range(4):
             fan.send_json({"type": "chat", "text": f"go {i}"})
             fan_codes.append([m.get("code") for m in ping(fan) if m["type"] == "error"])
-        assert fan_codes == [[], [], ["chat_rate_limited"], ["chat_rate_limited"]]
+        # told once; the rest of the streak is dropped without a reply (and not broadcast)
+        assert fan_codes == [[], [], ["chat_rate_limited"], []]
+        heard = [m["text"] for m in ping(ana) if m["type"] == "chat"]
+        assert heard == ["go 0", "go 1"]
         ana_codes = []
-        for i in range(5):
+        for i in range(6):
             ana.send_json({"type": "chat", "text": f"gl {i}"})
             ana_codes.append([m.get("code") for m in ping(ana) if m["type"] == "error"])
-        assert ana_codes == [[]] * 4 + [["chat_rate_limited"]]
+        assert ana_codes == [[]] * 4 + [["chat_rate_limited"], []]
 
 
 def test_spectators_per_room_are_capped_with_a_clear_reason(client: TestClient):
@@ -151,8 +155,8 @@ def test_a_flood_close_still_delivers_the_replies_owed(tmp_path: Path):
     settings = Settings(
         web_dir=tmp_path,
         db_path=tmp_path / "pool.db",
-        rate_burst=5,
-        rate_per_second=0.01,
+        spectator_rate_burst=5,
+        spectator_rate_per_second=0.01,
         presence_interval=0.0,
     )
     with TestClient(create_app(settings)) as client:
@@ -168,3 +172,45 @@ def test_a_flood_close_still_delivers_the_replies_owed(tmp_path: Path):
                     pongs.append(fan.receive_json()["id"])
     assert pongs == [0, 1, 2, 3, 4]
     assert (closed.value.code, closed.value.reason) == (1008, "rate_limited")
+
+
+def test_a_spectator_sending_at_a_players_pace_is_closed(tmp_path: Path):
+    """A spectator only chats and syncs: its budget is smaller than a player's, so a crowd
+    sending as fast as it may costs the server little."""
+    settings = Settings(
+        web_dir=tmp_path,
+        db_path=tmp_path / "pool.db",
+        rate_burst=20,
+        rate_per_second=0.01,
+        spectator_rate_burst=5,
+        spectator_rate_per_second=0.01,
+        presence_interval=0.0,
+    )
+    with TestClient(create_app(settings, seeds=SeedSource.fixed(5))) as client:
+        room_id, tokens = seated(client)
+        with (
+            client.websocket_connect(f"/ws/rooms/{room_id}?token={tokens[0]}") as ana,
+            client.websocket_connect(f"/ws/rooms/{room_id}") as fan,
+        ):
+            for i in range(8):
+                ana.send_json({"type": "ping", "id": i})
+            assert [m["id"] for m in until_pongs(ana, 8)] == list(range(8))  # still open
+            for i in range(8):
+                fan.send_json({"type": "ping", "id": i})
+            pongs = []
+            with pytest.raises(WebSocketDisconnect) as closed:
+                while True:
+                    message = fan.receive_json()
+                    if message["type"] == "pong":
+                        pongs.append(message["id"])
+    assert pongs == [0, 1, 2, 3, 4]
+    assert (closed.value.code, closed.value.reason) == (1008, "rate_limited")
+
+
+def until_pongs(ws, count: int) -> list[dict]:
+    pongs: list[dict] = []
+    while len(pongs) < count:
+        message = ws.receive_json()
+        if message["type"] == "pong":
+            pongs.append(message)
+    return pongs

@@ -14,6 +14,7 @@ UNLIMITED: dict[str, Any] = {
     "max_rooms_per_client": 100_000,
     "room_create_rate": "100000/minute",
     "join_rate": "100000/minute",
+    "watch_rate": "100000/minute",
     "player_create_rate": "100000/minute",  # every browser test's page makes a profile
     "queue_rate": "100000/minute",
     "player_chat_burst": 1000.0,
