@@ -8,7 +8,7 @@ et al. 2010 for the cushion, and pooltool 0.6.0's defaults (which follow DA-PP).
 
 from __future__ import annotations
 
-from dataclasses import astuple, dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
@@ -57,8 +57,9 @@ class PhysicsParams:
     cue_mass_ratio: float = DEFAULT_CUE_MASS_RATIO
 
     def array(self) -> np.ndarray:
-        """The values in field order, for the compiled kernels."""
-        return np.array(astuple(self), dtype=np.float64)
+        """The values in field order, for the compiled kernels (read field by field:
+        `astuple` deep-copies, a cost the server paid on the event loop every shot)."""
+        return np.array([getattr(self, f.name) for f in fields(self)], dtype=np.float64)
 
 
 DEFAULT_PARAMS = PhysicsParams()

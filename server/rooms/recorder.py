@@ -14,7 +14,7 @@ from collections.abc import Callable, Iterator
 from concurrent.futures import Future
 from dataclasses import dataclass
 
-from server.codec import encode, to_data
+from server.codec import to_data
 from server.engine import ENGINE_VERSION, BallSet, Shot
 from server.protocol import ShotPlan
 from server.protocol.plan import motion_text
@@ -22,7 +22,7 @@ from server.rules import Outcome
 from server.store import Database, Repository, StaleOwner
 
 from .room import Room
-from .snapshot import pending_shot, room_to_snapshot
+from .snapshot import pending_shot, room_snapshot_json
 
 
 @dataclass
@@ -97,7 +97,7 @@ class StoreObserver:
         if not self.active:
             return
         match_id = self.match_id(room)
-        text = encode(room_to_snapshot(room, match_id, pending_shot(shot_id, seat, shot)))
+        text = room_snapshot_json(room, match_id, pending_shot(shot_id, seat, shot))
         self._write(
             room.room_id, lambda repo, e: repo.save_room(room.room_id, text, epoch=e), "save room"
         )
@@ -140,7 +140,7 @@ class StoreObserver:
             return
         match_id = self.match_id(room)
         self._finish_if_over(room)
-        text = encode(room_to_snapshot(room, match_id))
+        text = room_snapshot_json(room, match_id)
         self._write(
             room.room_id, lambda repo, e: repo.save_room(room.room_id, text, epoch=e), "save room"
         )

@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
-from server.codec import from_data, to_data
+from server.codec import from_data, to_data, to_json
 from server.engine import Shot
 from server.rules import Match
 from server.store import PendingShot
@@ -62,8 +62,21 @@ def room_to_snapshot(
     room: Room, match_id: int | None, pending: PendingShot | None = None
 ) -> dict[str, Any]:
     """The room at rest (or just before `pending` was struck), as plain data."""
+    result: dict[str, Any] = to_data(_saved(room, match_id, pending))
+    return result
+
+
+def room_snapshot_json(
+    room: Room, match_id: int | None, pending: PendingShot | None = None
+) -> str:
+    """`room_to_snapshot` as JSON text in one pass (pydantic's serializer, ~2.5x faster
+    than plain data then `json.dumps`: the server saves a room twice a shot)."""
+    return to_json(_saved(room, match_id, pending))
+
+
+def _saved(room: Room, match_id: int | None, pending: PendingShot | None) -> SavedRoomData:
     shots_played = room.shots_played if pending is None else pending.id - 1
-    data = SavedRoomData(
+    return SavedRoomData(
         version=1,
         room_id=room.room_id,
         game=room.game,
@@ -80,8 +93,6 @@ def room_to_snapshot(
         listed=room.listed,
         computer=dict(room.computer),
     )
-    result: dict[str, Any] = to_data(data)
-    return result
 
 
 def room_from_snapshot(data: dict[str, Any]) -> SavedRoom:
