@@ -3,7 +3,10 @@ ladder of levels, plan times and per-game counts.
 
     python -m bench.ai [--games 200] [--runouts 200] [--only runouts,greedy,ladder,loop]
                        [--kind eight_ball] [--seed 0] [--jobs 1]
-                       [--rooms 2] [--workers 1] [--seconds 10]
+                       [--rooms 2] [--workers 1] [--seconds 10] [--configs 1200]
+
+`calibrate`: the pot chance the search plans with against the engine's measured rates
+under the top level's noise (what `geometry.FASTFIZ` was fitted to).
 
 `loop`: how late the server's event loop runs (what every room's frames wait) while
 computer seats plan in threads or in worker processes, as `server.rooms.computer` does.
@@ -29,7 +32,7 @@ import numpy as np
 
 from server.ai import LEVELS, Bot, Turn, play_turn
 from server.ai.bot import NormalSource
-from server.ai.geometry import pot_options, speed_for
+from server.ai.geometry import ChanceModel, pot_options, speed_for
 from server.ai.search import clamp_shot
 from server.codec import to_data
 from server.engine import CUE, TICK_HZ, Shot
@@ -324,6 +327,99 @@ def loop_report(rooms: int, workers: int, seconds: float, seed: int) -> None:
         )
 
 
+# --- the pot-chance model against the engine ----------------------------------------------
+CALIBRATE_TRIALS = 30  # noisy strokes per configuration
+
+
+def pot_rates(configs: int, seed: int) -> np.ndarray:
+    """Random one-ball pots (cue ball, object ball and pocket anywhere the geometry allows),
+    each played `CALIBRATE_TRIALS` times with the top level's noise (ghost-ball aim, centre
+    ball, 1.8 or 2.4 times the speed that just reaches): rows of (d1, d2, cut, side pocket,
+    cos of the approach to the mouth, measured rate)."""
+    from server.ai.geometry import pockets_of
+    from server.ai.search import aimed, perturb
+    from server.engine import BallSet, Table, simulate
+
+    table = Table.pool("9ft")
+    r = table.ball_radius
+    level = Bot(LEVELS[-1]).level
+    pk = pockets_of(table)
+    rng = np.random.default_rng(seed)
+    rows: list[tuple[float, ...]] = []
+    while len(rows) < configs:
+        ox, oy = rng.uniform(2 * r, table.length - 2 * r), rng.uniform(2 * r, table.width - 2 * r)
+        cx, cy = rng.uniform(2 * r, table.length - 2 * r), rng.uniform(2 * r, table.width - 2 * r)
+        if math.dist((ox, oy), (cx, cy)) < 3 * r:
+            continue
+        balls = BallSet.place({CUE: (cx, cy), 1: (ox, oy)})
+        options = pot_options(table, balls, [1], level.aim)
+        if not options:
+            continue
+        o = options[int(rng.integers(len(options)))]
+        factor = (1.8, 2.4)[int(rng.integers(2))]
+        shot = aimed(o.angle, min(speed_for(o) * factor, 0.85 * 12.0), 0.0, 0.0)
+        made = 0
+        for _ in range(CALIBRATE_TRIALS):
+            final = simulate(table, balls, perturb(shot, rng.standard_normal(4), level)).final
+            row = final.index(1)
+            made += bool(
+                not final.on_table[row]
+                and int(final.pockets[row]) == o.pocket
+                and final.on_table[final.index(CUE)]
+            )
+        ux, uy = pk.aims[o.pocket][0] - ox, pk.aims[o.pocket][1] - oy
+        cos_in = (ux * pk.outward[o.pocket][0] + uy * pk.outward[o.pocket][1]) / math.hypot(ux, uy)
+        rows.append((o.d1, o.d2, o.cut, pk.side[o.pocket], cos_in, made / CALIBRATE_TRIALS))
+    return np.array(rows)
+
+
+def model_rates(data: np.ndarray, model: ChanceModel, aim: float, r: float) -> np.ndarray:
+    """The chance `model` gives each row of `pot_rates` (the formula of `_pot_kernel`)."""
+    d1, d2, cut, side, cos_in, _ = data.T
+    mouth = np.where(side > 0, 0.127, 0.114)
+    window = (mouth * np.clip(cos_in, 0, 1) - 2 * r) / 2 + model.jaw - model.side * side
+    s_aim = model.aim_scale * d1 * aim / (2 * r * np.maximum(np.cos(cut), 0.05))
+    sigma = np.sqrt(s_aim**2 + model.floor**2 + (model.cut * np.sin(cut)) ** 2)
+    z = np.maximum(window, 1e-4) / d2 / (sigma * math.sqrt(2))
+    return np.clip(np.array([math.erf(v) for v in z]), 1e-4, 1 - 1e-4)
+
+
+def calibrate(configs: int, seed: int) -> None:
+    """Measure pot rates under the top level's noise and compare the plain geometric
+    chance with the fitted model (`geometry.FASTFIZ`): log-loss and rates by distance."""
+    from server.ai.geometry import FASTFIZ, GEOMETRIC, MIN_AIM_SIGMA
+
+    t0 = time.perf_counter()
+    data = pot_rates(configs, seed)
+    aim, r = Bot(LEVELS[-1]).level.aim, 0.028575
+    plain = model_rates(data, GEOMETRIC, max(aim, MIN_AIM_SIGMA), r)
+    fitted = model_rates(data, FASTFIZ, aim, r)
+    rate = data[:, 5]
+    n = CALIBRATE_TRIALS
+
+    def loss(p: np.ndarray) -> float:
+        return float(-(n * (rate * np.log(p) + (1 - rate) * np.log(1 - p))).mean())
+
+    print(
+        f"pot chance vs the engine ({configs} pots x {n} noisy strokes, "
+        f"{time.perf_counter() - t0:.0f} s): log-loss per pot plain {loss(plain):.2f}, "
+        f"fitted {loss(fitted):.2f}"
+    )
+    for name, col, edges in (
+        ("cue->object m", 0, (0, 0.3, 0.6, 1.0, 1.5, 3.0)),
+        ("object->pocket m", 1, (0, 0.3, 0.6, 1.0, 1.5, 3.0)),
+        ("cut deg", 2, (0, 15, 30, 45, 60, 80)),
+    ):
+        x = np.degrees(data[:, col]) if col == 2 else data[:, col]
+        for lo, hi in zip(edges, edges[1:], strict=False):
+            m = (x >= lo) & (x < hi)
+            if m.any():
+                print(
+                    f"  {name} {lo}-{hi}: {int(m.sum())} pots, measured {rate[m].mean():.2f}, "
+                    f"plain {plain[m].mean():.2f}, fitted {fitted[m].mean():.2f}"
+                )
+
+
 def _map(fn: Callable, jobs_args: list, jobs: int) -> list:
     if jobs <= 1:
         return [fn(a) for a in jobs_args]
@@ -381,6 +477,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--rooms", type=int, default=2, help="computer seats (--only loop)")
     parser.add_argument("--workers", type=int, default=1, help="planner processes (loop)")
     parser.add_argument("--seconds", type=float, default=10.0, help="per mode (loop)")
+    parser.add_argument("--configs", type=int, default=1200, help="pots measured (calibrate)")
     args = parser.parse_args(argv)
     parts = set(args.only.split(","))
     print(f"bench.ai: levels {', '.join(LEVELS)}; seed {args.seed}; jobs {args.jobs}")
@@ -398,6 +495,8 @@ def main(argv: list[str] | None = None) -> int:
     if "greedy" in parts:
         print("against the greedy baseline (8-ball, alternating breaks):")
         match("eight_ball", LEVELS[-1], "greedy", args.games, args.seed, args.jobs)
+    if "calibrate" in parts:
+        calibrate(args.configs, args.seed)
     if "loop" in parts:
         loop_report(args.rooms, args.workers, args.seconds, args.seed)
     if "ladder" in parts:

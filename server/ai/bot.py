@@ -208,9 +208,10 @@ class Bot:
             ]
             legal = [s for s in fine if can_place(table, balls, area, s[0], s[1])]
         sigma = self.level.aim
+        model = self.level.chance_model
 
         def quality(xy: tuple[float, float]) -> float:
-            return best_chance(table, balls, targets, sigma, cue_xy=xy)
+            return best_chance(table, balls, targets, sigma, cue_xy=xy, model=model)
 
         scored = sorted(legal, key=lambda s: -quality(s))
         # Keep the best few spots, but not three on the same line.
@@ -295,7 +296,9 @@ class Bot:
         options = decision.options
         pos = game.position()
         legal = game.rules.legal_targets(pos) or pos.object_balls
-        q = best_chance(game.table, game.balls, legal, self.level.aim)
+        q = best_chance(
+            game.table, game.balls, legal, self.level.aim, model=self.level.chance_model
+        )
         if "spot" in options:
             return "spot"  # keep the broken table (and the ball in hand, if offered)
         if "accept" in options:

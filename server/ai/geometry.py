@@ -14,8 +14,34 @@ from numba import njit
 from server.engine import CUE, BallSet, Table
 
 MAX_CUT = math.radians(78.0)  # thinner cuts are not tried
-JAW_BONUS = 0.008  # m a ball may be off the clean window and still drop (measured loosely)
 MIN_AIM_SIGMA = math.radians(0.2)  # position play plans with at least this aim error
+
+
+@dataclass(frozen=True)
+class ChanceModel:
+    """How the pot chance's object-ball angle error is built from the aim sigma.
+
+    The object ball leaves at an error of sigma_obj = sqrt((aim_scale * d1 * sigma_aim /
+    (2R cos cut))^2 + floor^2 + (cut * sin cut)^2) radians, against the mouth's clean window
+    widened by `jaw` metres (narrowed by `side` metres for a side pocket). `floor` and `cut`
+    are what the tip error (squirt, throw) adds whatever the distance; measured at the
+    FastFiz noise and scaled by the level's tip sigma.
+    """
+
+    aim_scale: float = 1.0
+    floor: float = 0.0
+    cut: float = 0.0
+    jaw: float = 0.008
+    side: float = 0.0
+
+
+GEOMETRIC = ChanceModel()  # the plain ghost-ball estimate (the lower levels plan with it)
+# Fitted (maximum likelihood, `python -m bench.ai --only calibrate`) to 1200 random pots of
+# one ball played with the pro's FastFiz noise, 30 noisy strokes each: the plain model says
+# 0.92 for shots under 0.3 m that the pro makes 62 % of the time with a centre-ball stroke,
+# and it ignores that a long object-ball distance costs far more than a long cue-ball one.
+FASTFIZ = ChanceModel(aim_scale=1.3, floor=0.025, cut=0.03, jaw=0.016, side=0.01)
+FASTFIZ_TIP_MM = 0.5
 
 
 @dataclass(frozen=True)
@@ -25,6 +51,7 @@ class Pockets:
     aims: np.ndarray  # (P, 2)
     outward: np.ndarray  # (P, 2)
     mouths: np.ndarray  # (P,)
+    side: np.ndarray  # (P,) 1.0 for a side pocket, else 0.0
 
 
 _pockets: dict[int, tuple[Table, Pockets]] = {}
@@ -50,7 +77,8 @@ def _build_pockets(table: Table) -> Pockets:
         aims.append(((ax + bx) / 2, (ay + by) / 2))
         outward.append(p.outward)
         mouths.append(math.hypot(bx - ax, by - ay))
-    return Pockets(np.array(aims), np.array(outward), np.array(mouths))
+    side = [1.0 if abs(o[0]) < 0.1 else 0.0 for o in outward]
+    return Pockets(np.array(aims), np.array(outward), np.array(mouths), np.array(side))
 
 
 @dataclass(frozen=True)
@@ -92,10 +120,12 @@ def _pot_kernel(
     aims: np.ndarray,
     outward: np.ndarray,
     mouths: np.ndarray,
+    side: np.ndarray,
     r: float,
     length: float,
     width: float,
     aim_sigma: float,
+    model: tuple[float, float, float, float, float],
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(feasible, chance, cue angle, d1, d2, cos cut), each (T, P), for the balls `rows`:
     ghost-ball aim at each pocket's mouth, rejected when too thin a cut, too steep an
@@ -111,6 +141,7 @@ def _pot_kernel(
     cos_cut = np.zeros((n_t, n_p))
     min_cos = math.cos(MAX_CUT)
     sigma = max(aim_sigma, 1e-6)
+    aim_scale, floor, cut_sigma, jaw, side_cost = model
     for i in range(n_t):
         row = rows[i]
         ox, oy = positions[row, 0], positions[row, 1]
@@ -123,7 +154,8 @@ def _pot_kernel(
             dist1 = max(math.sqrt(vx * vx + vy * vy), 1e-9)
             cc = (ux * vx + uy * vy) / dist1
             cos_in = ux * outward[p, 0] + uy * outward[p, 1]
-            window = (mouths[p] * min(max(cos_in, 0.0), 1.0) - 2 * r) / 2 + JAW_BONUS
+            window = (mouths[p] * min(max(cos_in, 0.0), 1.0) - 2 * r) / 2 + jaw
+            window -= side_cost * side[p]
             d1[i, p], d2[i, p], cos_cut[i, p] = dist1, dist2, cc
             angle[i, p] = math.atan2(vy, vx)
             if cc <= min_cos or window <= 0.003 or cos_in <= 0.35:
@@ -144,7 +176,9 @@ def _pot_kernel(
             if blocked:
                 continue
             ok[i, p] = True
-            sigma_obj = dist1 * sigma / (2 * r * max(cc, 0.05))
+            s_aim = aim_scale * dist1 * sigma / (2 * r * max(cc, 0.05))
+            s_cut = cut_sigma * math.sqrt(max(1.0 - cc * cc, 0.0))
+            sigma_obj = math.sqrt(s_aim * s_aim + floor * floor + s_cut * s_cut)
             chance[i, p] = math.erf((window / dist2) / (sigma_obj * math.sqrt(2.0)))
     return ok, chance, angle, d1, d2, cos_cut
 
@@ -192,12 +226,13 @@ def pot_options(
     targets: list[int],
     aim_sigma: float,
     cue_xy: tuple[float, float] | None = None,
+    model: ChanceModel = GEOMETRIC,
 ) -> list[PotOption]:
     """Every unblocked straight or cut pot of a ball of `targets`, best chance first.
 
     `cue_xy` puts the cue ball somewhere else (ball in hand) without copying the set.
     """
-    arrays = _pot_arrays(table, balls, targets, aim_sigma, cue_xy)
+    arrays = _pot_arrays(table, balls, targets, aim_sigma, cue_xy, model)
     if arrays is None:
         return []
     want, ok, chance, angles, d1, d2, cos_cut = arrays
@@ -233,6 +268,7 @@ def _pot_arrays(
     targets: list[int],
     aim_sigma: float,
     cue_xy: tuple[float, float] | None,
+    model: ChanceModel = GEOMETRIC,
 ) -> (
     tuple[list[int], np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None
 ):
@@ -258,10 +294,12 @@ def _pot_arrays(
         pk.aims,
         pk.outward,
         pk.mouths,
+        pk.side,
         float(table.ball_radius),
         float(table.length),
         float(table.width),
         float(aim_sigma),
+        (model.aim_scale, model.floor, model.cut, model.jaw, model.side),
     )
     return want, ok, chance, angles, d1, d2, cos_cut
 
@@ -272,10 +310,13 @@ def best_chance(
     targets: list[int],
     aim_sigma: float,
     cue_xy: tuple[float, float] | None = None,
+    model: ChanceModel = GEOMETRIC,
 ) -> float:
     """How good the best pot is from here: mostly the best option's chance, a little of
     the second's (a table with two ways on is easier to play)."""
-    arrays = _pot_arrays(table, balls, targets, max(aim_sigma, MIN_AIM_SIGMA), cue_xy)
+    if model is GEOMETRIC:
+        aim_sigma = max(aim_sigma, MIN_AIM_SIGMA)
+    arrays = _pot_arrays(table, balls, targets, aim_sigma, cue_xy, model)
     if arrays is None:
         return 0.0
     flat = arrays[2].ravel()
@@ -286,10 +327,15 @@ def best_chance(
 
 
 def speed_for(option: PotOption, u_roll_g: float = 0.0981) -> float:
-    """The cue-ball speed that just gets the object ball to the pocket, with a margin."""
+    """The cue-ball speed that just gets the object ball to the pocket, with a margin.
+
+    The last factor is measured with the engine (the least speed that drops straight and
+    cut pots): the object ball slides before it rolls, so a long one needs more than
+    rolling friction alone says (x1.13 at 0.8 m, x1.3 at 1.5 m)."""
     v_obj = math.sqrt(2 * u_roll_g * (option.d2 + 0.25))
     v_hit = v_obj / max(math.cos(option.cut), 0.25) / 0.95
-    return math.sqrt(v_hit * v_hit + 2 * u_roll_g * option.d1) / 0.7
+    slide = 1.0 + 0.25 * max(option.d2 - 0.3, 0.0)
+    return math.sqrt(v_hit * v_hit + 2 * u_roll_g * option.d1) / 0.7 * slide
 
 
 def open_share(table: Table, balls: BallSet, targets: list[int]) -> float:

@@ -9,9 +9,11 @@ under its own noise, so a weak level knows it misses long shots and plays easier
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from server.engine import BALL_RADIUS
+
+from .geometry import FASTFIZ, FASTFIZ_TIP_MM, GEOMETRIC, ChanceModel
 
 
 @dataclass(frozen=True)
@@ -45,6 +47,16 @@ class Level:
     confirm_samples: int = 0
     budget: int = 1000
     lookahead: int = 0
+    calibrated: bool = False
+
+    @property
+    def chance_model(self) -> ChanceModel:
+        """The pot-chance model it plans with: the one fitted to the engine under noise
+        (scaled by this level's tip error) when `calibrated`, else the plain geometry."""
+        if not self.calibrated:
+            return GEOMETRIC
+        k = self.tip_mm / FASTFIZ_TIP_MM
+        return replace(FASTFIZ, floor=FASTFIZ.floor * k, cut=FASTFIZ.cut * k)
 
     @property
     def aim(self) -> float:
@@ -61,7 +73,7 @@ LEVEL_TABLE: tuple[Level, ...] = (
     Level("beginner", 1.5, 0.30, 3.0, 4, 2, 1, 3, 4, False, 1, 0.2, budget=200),
     Level("amateur", 0.7, 0.18, 2.0, 6, 3, 3, 4, 6, True, 2, 0.6, budget=350),
     Level("club", 0.35, 0.11, 1.0, 8, 3, 3, 6, 10, True, 3, 1.0, 2, 10, 550, 2),
-    Level("pro", 0.125, 0.075, 0.5, 12, 4, 5, 12, 20, True, 3, 1.0, 3, 40, 1500, 10),
+    Level("pro", 0.125, 0.075, 0.5, 12, 4, 5, 12, 20, True, 3, 1.0, 3, 40, 2400, 10, True),
 )
 LEVELS: tuple[str, ...] = tuple(level.name for level in LEVEL_TABLE)
 BY_NAME: dict[str, Level] = {level.name: level for level in LEVEL_TABLE}

@@ -33,12 +33,14 @@ OPEN_WEIGHT = 0.45  # share of the position score given to how open the own ball
 PROGRESS = 0.03  # per own ball pocketed
 SAFETY_BELOW = 0.3
 SAFETY_SHARE = 0.3  # of a turn's simulations kept for safeties and kicks
+SAFETY_LOOKS = 3  # best safeties that pocket sometimes, searched a shot ahead like the pots
 LOOK_PAIRS, LOOK_SPEEDS, LOOK_TIPS = 4, 2, 3  # the next-shot search of the lookahead
+LOOK_LEAVES = 3  # leaves searched per looked-ahead pot: the exact one and two noisy ones
 LOOK_SIMS = (
     LOOK_PAIRS * LOOK_SPEEDS * LOOK_TIPS + 1
 )  # look for a safety when the best pot is worth less than this
 TIPS = ((0.0, 0.0), (0.0, 0.35), (0.0, -0.35), (0.3, 0.15), (-0.3, 0.15))
-SPEED_FACTORS = (1.0, 1.8, 3.0, 4.6)
+SPEED_FACTORS = (1.25, 1.8, 3.0, 4.6)
 SAFETY_SPEEDS = (0.7, 1.4, 2.6)
 KICK_SPEEDS = (1.5, 2.6, 4.0)
 KICK_OFFSETS = (-2.0, -0.8, 0.0, 0.8, 2.0)  # degrees off the mirror-image line
@@ -244,23 +246,45 @@ class Search:
             head = sorted(chosen[:n_confirm], key=lambda c: -c.value)
             chosen = head + chosen[n_confirm:]
         if self.level.lookahead and chosen and chosen[0].kind == "pot":
-            for cand in chosen[: self.level.lookahead]:
-                self.look_ahead(balls, cand)
-            chosen.sort(key=lambda c: -c.value)
+            # Only the looked-ahead pots compete first: the search of the next shot is
+            # stricter than the quick estimate, so an unsearched pot would win by default.
+            looked = [c for c in chosen[: self.level.lookahead] if self.look_ahead(balls, c)]
+            rest = [c for c in chosen if not any(c is x for x in looked)]
+            chosen = sorted(looked, key=lambda c: -c.value) + rest
         return chosen
 
-    def look_ahead(self, balls: BallSet, cand: Candidate) -> None:
+    def look_ahead(self, balls: BallSet, cand: Candidate) -> bool:
         """Replace the quick estimate of the position a pot leaves by a search of the next
-        shot from the table the shot leaves without noise (when it pockets there)."""
-        if self.limit - self.sims < LOOK_SIMS:
-            return
+        shot from the tables the shot leaves: without noise and on the first
+        `LOOK_LEAVES - 1` noisy draws (a leave that only works when the speed is exact
+        is worth less), averaged over those that pocket. False when the budget allowed
+        no search."""
         pos = self.pos_for(cand)
-        value0, made, ruling, final = self.outcome(pos, balls, cand.shot)
-        if not made or ruling.winner is not None:
-            return
+        shots = [cand.shot] + [
+            perturb(cand.shot, row, self.level) for row in self.noise[: LOOK_LEAVES - 1]
+        ]
+        deltas = []
+        searched = False
+        for shot in shots:
+            if self.limit - self.sims < LOOK_SIMS:
+                break
+            searched = True
+            value, made, ruling, final = self.outcome(pos, balls, shot)
+            if not made or ruling.winner is not None:
+                continue
+            deltas.append(self._next_shot(pos, ruling, final) - value)
+        if deltas:
+            cand.value += cand.pot_rate * sum(deltas) / len(deltas)
+        return searched
+
+    def _next_shot(self, pos: Position, ruling: Ruling, final: BallSet) -> float:
+        """The value of the best next pot from `final` (simulated without noise, weighted by
+        its chance), or of giving up the table when there is none."""
         nxt = self.after(pos, ruling, final, self.seat)
-        sigma = max(self.plan_sigma(), MIN_AIM_SIGMA)
-        options = pot_options(self.table, final, self.targets(nxt), sigma)[:LOOK_PAIRS]
+        model = self.level.chance_model
+        sigma = self.plan_sigma() if model.floor else max(self.plan_sigma(), MIN_AIM_SIGMA)
+        options = pot_options(self.table, final, self.targets(nxt), sigma, model=model)
+        options = options[:LOOK_PAIRS]
         needs_call = self.rules.requires_call(nxt)
         give = GIVE_BASE - GIVE_SCALE * 0.4
         best = give
@@ -278,7 +302,7 @@ class Search:
                         self.seat = saved
                     est = option.chance * v + (1 - option.chance) * give if ok else give
                     best = max(best, est)
-        cand.value += cand.pot_rate * (best - value0)
+        return best
 
     # --- candidates -------------------------------------------------------------------
     def pot_candidates(self, balls: BallSet, pairs: int) -> list[Candidate]:
@@ -402,6 +426,13 @@ class Search:
                 if safe and safe[0].value > FOUL + 0.2:
                     break
                 safe = sorted(safe + self.refine(balls, more(balls), keep), key=lambda c: -c.value)
+            if level.lookahead and best is not None and best.kind == "pot":
+                # A safety that sometimes pockets was valued by the quick estimate of what
+                # it leaves; the pots by the search of the next shot: compare like with like.
+                for cand in safe[:SAFETY_LOOKS]:
+                    if cand.pot_rate > 0:
+                        self.look_ahead(balls, cand)
+                safe.sort(key=lambda c: -c.value)
             if safe and (best is None or safe[0].value > best.value):
                 best = safe[0]
         return best if best is not None else self.fallback(balls)

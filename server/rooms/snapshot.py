@@ -66,9 +66,7 @@ def room_to_snapshot(
     return result
 
 
-def room_snapshot_json(
-    room: Room, match_id: int | None, pending: PendingShot | None = None
-) -> str:
+def room_snapshot_json(room: Room, match_id: int | None, pending: PendingShot | None = None) -> str:
     """`room_to_snapshot` as JSON text in one pass (pydantic's serializer, ~2.5x faster
     than plain data then `json.dumps`: the server saves a room twice a shot)."""
     return to_json(_saved(room, match_id, pending))
