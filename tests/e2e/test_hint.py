@@ -30,7 +30,12 @@ def test_show_me_a_shot_draws_the_plan_without_playing_it(base_url, new_page, ar
     caption = ana.get_by_test_id("hint-text")
     expect(caption).to_have_text(re.compile(r"m/s, "), timeout=60_000)
     wait_for(ana, "window.__pool.ready")
-    assert canvas_digest(ana) != before  # the plan is drawn over the table
+    # The plan is drawn over the table on the next animation frame after the caption.
+    for _ in range(50):
+        if canvas_digest(ana) != before:
+            break
+        ana.wait_for_timeout(100)
+    assert canvas_digest(ana) != before
     ana.get_by_test_id("table").screenshot(path=str(artifacts / "hint.png"))
     # Nothing was played: no shot, the balls where they were, still the player's turn.
     assert ana.evaluate("window.__pool.shotsSeen") == 0
