@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import Annotated
 
-from fastapi import Depends, HTTPException, Request
+from fastapi import Depends, HTTPException
 from starlette.requests import HTTPConnection
 
 from server.cluster import Cluster
@@ -26,13 +26,9 @@ async def get_settings(conn: HTTPConnection) -> Settings:
     return settings
 
 
-def registry_of(conn: HTTPConnection) -> RoomRegistry:
+async def get_registry(conn: HTTPConnection) -> RoomRegistry:
     registry: RoomRegistry = conn.app.state.registry
     return registry
-
-
-async def get_registry(conn: HTTPConnection) -> RoomRegistry:
-    return registry_of(conn)
 
 
 async def get_store(conn: HTTPConnection) -> Database:
@@ -57,9 +53,9 @@ async def client_id(conn: HTTPConnection) -> str:
     return conn.client.host if conn.client is not None else "unknown"
 
 
-async def get_room(room_id: str, request: Request) -> LiveRoom:
+async def get_room(room_id: str, registry: Registry) -> LiveRoom:
     """The live room of the path's `room_id`, else 404 `unknown_room`."""
-    live = registry_of(request).get(room_id)
+    live = registry.get(room_id)
     if live is None:
         raise HTTPException(404, {"code": "unknown_room", "message": "No such room."})
     return live
