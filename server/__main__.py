@@ -16,6 +16,7 @@ import uvicorn
 from server import logs
 from server.app import create_app
 from server.config import Settings, SettingsError
+from server.http_protocol import HttpProtocol
 from server.rooms.prepare import warm_up
 
 
@@ -38,6 +39,7 @@ def uvicorn_config(
         ws_per_message_deflate=settings.ws_deflate,
         workers=1,
         proxy_headers=False,
+        http=HttpProtocol,
         **extra,
     )
     logs.install()  # after uvicorn configured its loggers

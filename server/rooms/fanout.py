@@ -7,6 +7,11 @@ them, and a player's `shoot` that arrived meanwhile waited for the whole turn. H
 spectators' copies out `PER_TURN` at a time lets the loop read its sockets (the players')
 between batches; a spectator's messages keep their order (one queue for all of them, and a
 reply to a spectator joins it while it is not empty).
+
+While the room simulates a shot, the spectators' copies wait (`hold`): the shot's thread
+needs the GIL to start and to hand its result back, and a loop busy sending a crowd's
+copies of the last `state` made it wait a millisecond (the switch interval) at each step,
+several times a shot.
 """
 
 from __future__ import annotations
@@ -24,6 +29,7 @@ class FanOut:
     def __init__(self) -> None:
         self._queue: deque[tuple[Connection, str | bytes, bool, bool]] = deque()
         self._draining = False
+        self._held = False
 
     def send(
         self,
@@ -54,13 +60,23 @@ class FanOut:
     def pending(self) -> int:
         return len(self._queue)
 
+    def hold(self) -> None:
+        """Keep the spectators' copies queued (the players' still go at once)."""
+        self._held = True
+
+    def release(self) -> None:
+        self._held = False
+        self._schedule()
+
     def _schedule(self) -> None:
-        if self._queue and not self._draining:
+        if self._queue and not self._draining and not self._held:
             self._draining = True
             asyncio.get_running_loop().call_soon(self._drain)
 
     def _drain(self) -> None:
         self._draining = False
+        if self._held:
+            return
         for _ in range(min(PER_TURN, len(self._queue))):
             conn, message, droppable, social = self._queue.popleft()
             conn.push(message, droppable, social)

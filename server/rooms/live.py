@@ -393,6 +393,7 @@ class LiveRoom:
         assert seat is not None
         self._cancel_clock()
         self.observer.shot_started(self.room, seat, shot, shot_id)
+        self._fanout.hold()  # the spectators' copies wait while the shot is simulated
         self._stream = asyncio.get_running_loop().create_task(
             self._play(seat, shot, shot_id, before, time.perf_counter())
         )
@@ -426,6 +427,8 @@ class LiveRoom:
             self._arm_clock(restart=True)
             self.broadcast_state()
             return
+        finally:
+            self._fanout.release()
         # The shot's events (hundreds of small objects) are judged and packed: let them go
         # now, not after the seconds it takes to show the shot (fewer live objects for the
         # cyclic collector to walk, docs/performance.md).
