@@ -22,6 +22,7 @@ from server.cluster import Cluster
 from server.config import Settings
 from server.rooms import Clock, RoomRegistry, SeedSource, StoreObserver
 from server.rooms.clock import SYSTEM_CLOCK
+from server.rooms.computer import close_planners, open_planners
 from server.rooms.observer import RoomObserver
 from server.store import Database
 
@@ -56,6 +57,7 @@ def create_app(
     @contextlib.asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
         await registry.runner.start()
+        open_planners()
         store.open()
         if isinstance(observer, StoreObserver):
             observer.start()
@@ -87,6 +89,7 @@ def create_app(
                 await cluster.stop()
             await asyncio.to_thread(store.close)  # every queued write is on disk
             registry.runner.close()
+            await asyncio.to_thread(close_planners)
 
     app = FastAPI(
         title="Pool online",

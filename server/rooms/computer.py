@@ -17,6 +17,8 @@ import asyncio
 import logging
 import multiprocessing
 import os
+import threading
+import time
 from collections.abc import Callable
 from concurrent.futures import Executor, ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
@@ -37,7 +39,10 @@ log = logging.getLogger(__name__)
 AIM_STEPS = 6  # aim relays while the cue swings round to the shot
 MAX_STEPS = 4  # turns in a row before handing back (decision, then its shot, ...)
 WORKER_NICE = 10  # the planners yield the cores to the rooms' event loop when both want one
+PARENT_CHECK = 1.0  # s between a planner's looks at whether its server is still there
 _pools: dict[int, ProcessPoolExecutor] = {}  # workers -> the pool this process shares
+_servers = 0  # running apps of this process that may plan in `_pools`
+_stopped = False  # the last app stopped: plans still asked for run in a thread
 
 
 def _pool(workers: int) -> ProcessPoolExecutor:
@@ -49,12 +54,43 @@ def _pool(workers: int) -> ProcessPoolExecutor:
             workers,
             mp_context=multiprocessing.get_context("spawn"),
             initializer=_start_worker,
+            initargs=(os.getpid(),),
         )
     return pool
 
 
-def _start_worker() -> None:
+def open_planners() -> None:
+    """A server of this process starts (its rooms may use the shared planners)."""
+    global _servers, _stopped
+    _servers += 1
+    _stopped = False
+
+
+def close_planners() -> None:
+    """A server of this process stops; the last one stops the planner processes. uvicorn
+    ends a process stopped by a signal with that signal once the app has shut down, so
+    no exit handler would: without this, every restart left its planners running."""
+    global _servers, _stopped
+    _servers = max(0, _servers - 1)
+    if _servers == 0:
+        _stopped = True  # a seat still thinking must not start new ones
+        for pool in _pools.values():
+            pool.shutdown(wait=True, cancel_futures=True)
+        _pools.clear()
+
+
+def _exit_with(server: int) -> None:
+    """In a planner: end when the server that started it is gone (killed, so it could not
+    stop its planners), instead of living on as an orphan; it may be gone already, since a
+    planner takes a second or two to start."""
+    while os.getppid() == server:
+        time.sleep(PARENT_CHECK)
+    os._exit(0)
+
+
+def _start_worker(server: int) -> None:
     os.nice(WORKER_NICE)
+    threading.Thread(target=_exit_with, args=(server,), daemon=True).start()
     warm_up()
 
 
@@ -62,7 +98,7 @@ async def plan_turn(level: str, seed: int, game: dict[str, Any], seat: int, work
     """`Bot(level, seed).plan` of the game data `game` for `seat`, off the event loop: in a
     planner process when `workers` > 0, else in a thread."""
     loop = asyncio.get_running_loop()
-    if workers > 0:
+    if workers > 0 and not _stopped:
         pool: Executor = _pool(workers)
         try:
             return await loop.run_in_executor(pool, plan_data, level, seed, game, seat)

@@ -8,14 +8,9 @@ from __future__ import annotations
 import asyncio
 import json
 import math
-import os
 import random
 import signal
 import subprocess
-import sys
-import time
-from collections.abc import Iterator
-from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -23,48 +18,14 @@ import httpx
 import pytest
 import websockets
 
-from tests.support.games import BREAK_MESSAGE, EIGHT_BALL
+from tests.support.games import BREAK_MESSAGE
 from tests.support.live import free_port, ws_url
+from tests.support.process import server_process
 from tests.support.rooms import seated_room
 
 pytestmark = pytest.mark.timeout(600)
-ROOT = Path(__file__).resolve().parents[2]
 MOMENTS = 20
 FREE_SPOTS = ((0.5, 0.4), (0.3, 1.0), (0.45, 0.9), (0.2, 0.2), (0.55, 0.6), (0.1, 0.6))
-
-
-@contextmanager
-def server_process(port: int, db: Path) -> Iterator[subprocess.Popen]:
-    """`python -m server` on `port` over the database `db`, every rack of a fixed seed;
-    waits until it answers. The caller stops it (a signal) before leaving."""
-    env = {
-        **os.environ,
-        "POOL_DB_PATH": str(db),
-        "POOL_PACE": "8",
-        "POOL_GRACE": "600",
-        "POOL_PRESENCE_INTERVAL": "0",
-        "POOL_JOIN_RATE": "100000/minute",
-        "POOL_ROOM_CREATE_RATE": "100000/minute",
-        "POOL_RACK_SEED": str(EIGHT_BALL),
-    }
-    command = [sys.executable, "-m", "server", "--port", str(port), "--log-level", "warning"]
-    process = subprocess.Popen(command, cwd=ROOT, env=env)
-    try:
-        deadline = time.monotonic() + 60
-        while True:
-            try:
-                if httpx.get(f"http://127.0.0.1:{port}/health", timeout=1).status_code == 200:
-                    break
-            except httpx.TransportError:
-                pass
-            if process.poll() is not None or time.monotonic() > deadline:
-                raise RuntimeError("the server did not start")
-            time.sleep(0.05)
-        yield process
-    finally:
-        if process.poll() is None:
-            process.kill()
-        process.wait(30)
 
 
 class Player:
