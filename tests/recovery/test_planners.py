@@ -36,6 +36,8 @@ def planners_over(db: Path) -> list[int]:
     is init): spawned workers inherit the server's environment, `POOL_DB_PATH` included."""
     found = []
     for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
         try:
             command = (entry / "cmdline").read_bytes()
             environment = (entry / "environ").read_bytes().split(b"\0")
@@ -44,21 +46,6 @@ def planners_over(db: Path) -> list[int]:
         ours = b"spawn_main" in command and f"POOL_DB_PATH={db}".encode() in environment
         if ours and parent_of(int(entry.name)) is not None:
             found.append(int(entry.name))
-    return found
-
-
-def planners_of(server: int) -> list[int]:
-    """The planner processes `server` started (multiprocessing's spawned workers; its
-    resource tracker is another child, run differently)."""
-    found = []
-    for entry in Path("/proc").iterdir():
-        if not entry.name.isdigit() or parent_of(int(entry.name)) != server:
-            continue
-        try:
-            if b"spawn_main" in (entry / "cmdline").read_bytes():
-                found.append(int(entry.name))
-        except OSError:
-            pass
     return found
 
 
@@ -71,7 +58,7 @@ def wait_for(condition, within: float) -> bool:
     return True
 
 
-def computer_thinking(port: int, server: int) -> list[int]:
+def computer_thinking(port: int, db: Path) -> list[int]:
     """Ana breaks against the computer, then plays soft taps until it is the computer's turn;
     returns its planners once it is planning."""
     http = httpx.Client(base_url=f"http://127.0.0.1:{port}", timeout=20)
@@ -80,7 +67,7 @@ def computer_thinking(port: int, server: int) -> list[int]:
     shot = BREAK_MESSAGE
     with connect(ws_url(f"127.0.0.1:{port}", room["room_id"], ana["token"])) as ws:
         deadline = time.monotonic() + 60
-        while not planners_of(server):
+        while not planners_over(db):
             assert time.monotonic() < deadline, "the computer never started planning"
             try:
                 message = ws.recv(timeout=0.2)
@@ -92,14 +79,14 @@ def computer_thinking(port: int, server: int) -> list[int]:
             if state.get("type") == "state" and state["phase"] == "aiming" and ours:
                 ws.send(json.dumps(shot))
                 shot = {"type": "shoot", "angle": 0.0, "speed": 0.2}
-    return planners_of(server)
+    return planners_over(db)
 
 
 @pytest.mark.parametrize("how", [signal.SIGTERM, signal.SIGKILL], ids=["sigterm", "kill-9"])
 def test_planners_end_with_their_server(tmp_path: Path, how: signal.Signals):
     port, db = free_port(), tmp_path / "pool.db"
     with server_process(port, db) as process:
-        assert computer_thinking(port, process.pid)
+        assert computer_thinking(port, db)
         process.send_signal(how)
         process.wait(60)
     # Stopped, the server waited for them; killed, they look for it every PARENT_CHECK s
