@@ -2,7 +2,7 @@
 show the cue moving, then act through the same room actions as a person.
 
 The search runs in a worker process (`POOL_COMPUTER_WORKERS`, shared by every room of this
-server, at a lower CPU priority than the rooms' event loop), on the game's data. Not in a
+server, at Linux's idle scheduling class), on the game's data. Not in a
 thread: about half of a plan is Python holding the GIL (the rules judging each simulated
 shot), which the event loop needs for every other room (`python -m bench.ai --only loop`
 measures the difference). With no workers
@@ -38,7 +38,7 @@ from .room import Room
 log = logging.getLogger(__name__)
 AIM_STEPS = 6  # aim relays while the cue swings round to the shot
 MAX_STEPS = 4  # turns in a row before handing back (decision, then its shot, ...)
-WORKER_NICE = 10  # the planners yield the cores to the rooms' event loop when both want one
+WORKER_NICE = 19  # where the idle scheduling class is missing (not Linux)
 PARENT_CHECK = 1.0  # s between a planner's looks at whether its server is still there
 _pools: dict[int, ProcessPoolExecutor] = {}  # workers -> the pool this process shares
 _servers = 0  # running apps of this process that may plan in `_pools`
@@ -89,7 +89,16 @@ def _exit_with(server: int) -> None:
 
 
 def _start_worker(server: int) -> None:
-    os.nice(WORKER_NICE)
+    """The planners run on CPU time the rooms do not want (Linux `SCHED_IDLE`). At `nice 10`
+    a planner still made its core look busy, so the kernel woke the rooms' shot threads on
+    the event loop's core, where they waited behind the loop: 1,000 rooms with 50 against
+    the computer had a start p99 of 66-142 ms, at the idle class 54-61 ms
+    (docs/ai.md). A core running only idle-class work counts as free; the computer's
+    thinking pause hides a plan that waits a little."""
+    try:
+        os.sched_setscheduler(0, os.SCHED_IDLE, os.sched_param(0))
+    except (AttributeError, OSError):
+        os.nice(WORKER_NICE)
     threading.Thread(target=_exit_with, args=(server,), daemon=True).start()
     warm_up()
 
