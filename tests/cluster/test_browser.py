@@ -4,14 +4,13 @@ dies the page asks again and follows the room to the server that took it over.""
 
 from __future__ import annotations
 
-import time
-
 import pytest
 from playwright.sync_api import sync_playwright
 
 from tests.e2e.conftest import CHROMIUM_ARGS
 from tests.e2e.helpers import wait_ready
 from tests.support.games import EIGHT_BALL
+from tests.support.waiting import until
 
 from .servers import Server, ServerSet
 
@@ -22,13 +21,6 @@ def spectators(server: Server, room: str) -> int:
     with server.http() as client:
         reply = client.get(f"/api/rooms/{room}")
     return reply.json()["spectators"] if reply.status_code == 200 else -1
-
-
-def until(check, within: float = 30.0) -> None:
-    deadline = time.monotonic() + within
-    while not check():
-        assert time.monotonic() < deadline, "not within the time"
-        time.sleep(0.1)
 
 
 def test_a_page_follows_its_table_to_another_server(servers) -> None:

@@ -17,6 +17,7 @@ from server.rooms.computer import PARENT_CHECK
 from tests.support.games import BREAK_MESSAGE
 from tests.support.live import free_port, ws_url
 from tests.support.process import server_process
+from tests.support.waiting import until
 
 pytestmark = pytest.mark.timeout(240)
 
@@ -47,15 +48,6 @@ def planners_over(db: Path) -> list[int]:
         if ours and parent_of(int(entry.name)) is not None:
             found.append(int(entry.name))
     return found
-
-
-def wait_for(condition, within: float) -> bool:
-    deadline = time.monotonic() + within
-    while not condition():
-        if time.monotonic() > deadline:
-            return False
-        time.sleep(0.1)
-    return True
 
 
 def computer_thinking(port: int, db: Path) -> list[int]:
@@ -91,4 +83,4 @@ def test_planners_end_with_their_server(tmp_path: Path, how: signal.Signals):
         process.wait(60)
     # Stopped, the server waited for them; killed, they look for it every PARENT_CHECK s
     # (one that was still starting, too).
-    assert wait_for(lambda: not planners_over(db), 5 * PARENT_CHECK + 10), planners_over(db)
+    until(lambda: not planners_over(db), 5 * PARENT_CHECK + 10, "a planner outlived its server")
