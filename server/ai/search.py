@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -36,6 +36,8 @@ SAFETY_SHARE = 0.3  # of a turn's simulations kept for safeties and kicks
 SAFETY_LOOKS = 3  # best safeties that pocket sometimes, searched a shot ahead like the pots
 LOOK_PAIRS, LOOK_SPEEDS, LOOK_TIPS = 4, 2, 3  # the next-shot search of the lookahead
 LOOK_LEAVES = 3  # leaves searched per looked-ahead pot: the exact one and two noisy ones
+NO_SHOT = GIVE_BASE - GIVE_SCALE * 0.4  # a leave with no next pot, before safeties are known
+SAFE_LATER = 0.1  # a safety played after a pot, above one played now (a ball fewer to pot)
 LOOK_SIMS = (
     LOOK_PAIRS * LOOK_SPEEDS * LOOK_TIPS + 1
 )  # look for a safety when the best pot is worth less than this
@@ -89,6 +91,17 @@ class Candidate:
     value0: float = -math.inf
     value: float = -math.inf
     pot_rate: float = 0.0
+    # Lookahead: the value before the next shot was searched, and for each leave searched
+    # (value of the leave, value of the best next pot there or -inf when there is none).
+    base: float = 0.0
+    leaves: list[tuple[float, float]] = field(default_factory=list)
+
+    def revalue(self, floor: float) -> None:
+        """The value with `floor` for a leave whose best next pot is worth less (what
+        playing safe from there is worth)."""
+        if self.leaves:
+            gain = sum(max(nxt, floor) - v for v, nxt in self.leaves) / len(self.leaves)
+            self.value = self.base + self.pot_rate * gain
 
 
 @dataclass
@@ -263,8 +276,8 @@ class Search:
         shots = [cand.shot] + [
             perturb(cand.shot, row, self.level) for row in self.noise[: LOOK_LEAVES - 1]
         ]
-        deltas = []
         searched = False
+        cand.base, cand.leaves = cand.value, []
         for shot in shots:
             if self.limit - self.sims < LOOK_SIMS:
                 break
@@ -272,22 +285,21 @@ class Search:
             value, made, ruling, final = self.outcome(pos, balls, shot)
             if not made or ruling.winner is not None:
                 continue
-            deltas.append(self._next_shot(pos, ruling, final) - value)
-        if deltas:
-            cand.value += cand.pot_rate * sum(deltas) / len(deltas)
+            cand.leaves.append((value, self._next_shot(pos, ruling, final)))
+        cand.revalue(NO_SHOT)
         return searched
 
     def _next_shot(self, pos: Position, ruling: Ruling, final: BallSet) -> float:
         """The value of the best next pot from `final` (simulated without noise, weighted by
-        its chance), or of giving up the table when there is none."""
+        its chance), -inf when there is none."""
         nxt = self.after(pos, ruling, final, self.seat)
         model = self.level.chance_model
         sigma = self.plan_sigma() if model.floor else max(self.plan_sigma(), MIN_AIM_SIGMA)
         options = pot_options(self.table, final, self.targets(nxt), sigma, model=model)
         options = options[:LOOK_PAIRS]
         needs_call = self.rules.requires_call(nxt)
-        give = GIVE_BASE - GIVE_SCALE * 0.4
-        best = give
+        give = NO_SHOT
+        best = -math.inf
         for option in options:
             base = speed_for(option)
             for factor in SPEED_FACTORS[:LOOK_SPEEDS]:
@@ -300,7 +312,7 @@ class Search:
                         v, ok, _, _ = self.outcome(after, final, shot)
                     finally:
                         self.seat = saved
-                    est = option.chance * v + (1 - option.chance) * give if ok else give
+                    est = option.chance * v + (1 - option.chance) * give if ok else -math.inf
                     best = max(best, est)
         return best
 
@@ -433,9 +445,24 @@ class Search:
                     if cand.pot_rate > 0:
                         self.look_ahead(balls, cand)
                 safe.sort(key=lambda c: -c.value)
+                best = self.pot_then_safe(chosen, safe) or best
             if safe and (best is None or safe[0].value > best.value):
                 best = safe[0]
         return best if best is not None else self.fallback(balls)
+
+    def pot_then_safe(self, pots: list[Candidate], safe: list[Candidate]) -> Candidate | None:
+        """The best pot once a leave with no next pot is valued as the safety played from
+        there: about what a safety now is worth (a pure safety is worth at most
+        `GIVE_BASE`), plus a ball fewer left to pot. Without this the search preferred a
+        safety now to a sure pot followed by the same safety."""
+        pure = [c.value for c in safe if c.pot_rate == 0]
+        if not pure:
+            return None
+        floor = max(NO_SHOT, min(pure[0], GIVE_BASE) + SAFE_LATER)
+        for cand in pots + safe:
+            cand.revalue(floor)
+        safe.sort(key=lambda c: -c.value)
+        return max((c for c in pots if c.leaves), key=lambda c: c.value, default=None)
 
     def fallback(self, balls: BallSet) -> Candidate:
         """A firm hit straight at the nearest legal ball, unsimulated: what is left when the

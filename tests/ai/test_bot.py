@@ -119,6 +119,35 @@ def test_snooker_gets_a_safety_or_kick_not_a_foul(eight: Game) -> None:
     assert outcome is not None and not outcome.fouls
 
 
+def test_a_sure_pot_that_leaves_no_next_shot_beats_a_safety_now(eight: Game) -> None:
+    """A runout's table: stripes to shoot, 10 a straight pot, 9 blocked by the 7 and 12 and
+    13 next to the 8 and the other solids. Potting the 10 and playing safe afterwards is
+    worth more than playing safe now (the search used to value a leave with no next pot
+    below the safety it could play from there)."""
+    placement = {
+        0: (0.706, 1.191),
+        1: (2.496, 0.392),
+        2: (0.307, 1.191),
+        3: (2.497, 1.112),
+        4: (1.937, 1.133),
+        5: (2.461, 0.303),
+        6: (1.982, 0.571),
+        7: (2.499, 1.191),
+        8: (2.016, 0.64),
+        9: (1.729, 1.193),
+        10: (0.364, 0.584),
+        12: (2.065, 0.61),
+        13: (2.334, 0.605),
+    }
+    game = set_table(eight, placement, turn=1, groups=SOLIDS_STRIPES)
+    options = pot_options(TABLE, game.balls, [9, 10, 12, 13], math.radians(0.125))
+    assert [o.target for o in options] == [10]
+    turn = Bot(Bot.LEVELS[-1]).plan(game, 1)
+    assert turn.kind == "pot" and turn.target == 10
+    outcome, _ = play_turn(game, 1, turn)
+    assert outcome is not None and outcome.pocketed == (10,) and outcome.continues
+
+
 DECISIONS = [
     ("eight_ball", "eight_on_break", ("spot", "rerack")),
     ("eight_ball", "illegal_break", ("accept", "rerack", "rerack_opponent_breaks")),
