@@ -36,7 +36,8 @@ SAFETY_SHARE = 0.3  # of a turn's simulations kept for safeties and kicks
 SAFETY_LOOKS = 3  # best safeties that pocket sometimes, searched a shot ahead like the pots
 LOOK_PAIRS, LOOK_SPEEDS, LOOK_TIPS = 4, 2, 3  # the next-shot search of the lookahead
 LOOK_LEAVES = 3  # leaves searched per looked-ahead pot: the exact one and two noisy ones
-NO_SHOT = GIVE_BASE - GIVE_SCALE * 0.4  # a leave with no next pot, before safeties are known
+GIVE_UP = GIVE_BASE - GIVE_SCALE * 0.4  # the table given up to a 40 % shot: a missed next
+# pot, or a leave with no next pot while the safeties are not known yet
 SAFE_LATER = 0.1  # a safety played after a pot, above one played now (a ball fewer to pot)
 LOOK_SIMS = (
     LOOK_PAIRS * LOOK_SPEEDS * LOOK_TIPS + 1
@@ -286,7 +287,7 @@ class Search:
             if not made or ruling.winner is not None:
                 continue
             cand.leaves.append((value, self._next_shot(pos, ruling, final)))
-        cand.revalue(NO_SHOT)
+        cand.revalue(GIVE_UP)
         return searched
 
     def _next_shot(self, pos: Position, ruling: Ruling, final: BallSet) -> float:
@@ -298,7 +299,6 @@ class Search:
         options = pot_options(self.table, final, self.targets(nxt), sigma, model=model)
         options = options[:LOOK_PAIRS]
         needs_call = self.rules.requires_call(nxt)
-        give = NO_SHOT
         best = -math.inf
         for option in options:
             base = speed_for(option)
@@ -312,7 +312,7 @@ class Search:
                         v, ok, _, _ = self.outcome(after, final, shot)
                     finally:
                         self.seat = saved
-                    est = option.chance * v + (1 - option.chance) * give if ok else -math.inf
+                    est = option.chance * v + (1 - option.chance) * GIVE_UP if ok else -math.inf
                     best = max(best, est)
         return best
 
@@ -458,7 +458,7 @@ class Search:
         pure = [c.value for c in safe if c.pot_rate == 0]
         if not pure:
             return None
-        floor = max(NO_SHOT, min(pure[0], GIVE_BASE) + SAFE_LATER)
+        floor = max(GIVE_UP, min(pure[0], GIVE_BASE) + SAFE_LATER)
         for cand in pots + safe:
             cand.revalue(floor)
         safe.sort(key=lambda c: -c.value)
