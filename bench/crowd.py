@@ -27,7 +27,6 @@ import argparse
 import asyncio
 import contextlib
 import json
-import os
 import statistics
 import sys
 import tempfile
@@ -40,6 +39,7 @@ from websockets.exceptions import ConnectionClosed, InvalidStatus
 
 from bench.load import free_port, parse_motion, percentile, start_server, wait_healthy
 from server.config import Settings
+from server.priority import run_when_idle
 
 DEFAULTS = Settings()  # the server's default limits (not read from this environment)
 # The server shows each shot this many times faster than real time (`POOL_PACE`): more shots
@@ -216,7 +216,7 @@ async def measure(flood: str, base: str, port: int, seconds: float, warmup: floa
     ]
     # The flood runs in a process of its own, so its clients do not slow the players'
     # measurement down (this machine has two cores: server, players and flood share them),
-    # on CPU time nobody else wants (`idle_priority`).
+    # on CPU time nobody else wants (`server.priority`).
     flooder = None
     if flood != "quiet":
         flooder = await asyncio.create_subprocess_exec(
@@ -294,22 +294,6 @@ async def flood_only(flood: str, base: str, room: str, seconds: float) -> dict:
     return counts
 
 
-def idle_priority() -> None:
-    """Run this process at Linux's idle scheduling class (`SCHED_IDLE`): it runs only on CPU
-    time nobody else wants.
-
-    A real crowd's clients run on other machines; here they share the server's two cores.
-    At `nice 19` the flood's process still made a core look busy, so the scheduler often
-    woke the server's shot thread on the event loop's core, where it waited behind the
-    loop (a 2 ms simulation took up to 20 ms): that measured this machine, not the server.
-    A core running only idle-class work counts as free. The flood's rate is printed, so a
-    flood starved of CPU would show."""
-    try:
-        os.sched_setscheduler(0, os.SCHED_IDLE, os.sched_param(0))
-    except (AttributeError, OSError):  # not Linux
-        os.nice(19)
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(
         prog="python -m bench.crowd",
@@ -327,7 +311,7 @@ def main() -> None:
     parser.add_argument("--room", help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.flood_only:
-        idle_priority()
+        run_when_idle()  # a real crowd's clients are on other machines
         print(
             json.dumps(asyncio.run(flood_only(args.flood_only, args.base, args.room, args.seconds)))
         )

@@ -31,6 +31,7 @@ from server.ai import Bot, Turn
 from server.ai.play import plan_data, warm_up
 from server.codec import to_data
 from server.engine import Shot
+from server.priority import run_when_idle
 
 from .errors import ActionError
 from .room import Room
@@ -38,7 +39,6 @@ from .room import Room
 log = logging.getLogger(__name__)
 AIM_STEPS = 6  # aim relays while the cue swings round to the shot
 MAX_STEPS = 4  # turns in a row before handing back (decision, then its shot, ...)
-WORKER_NICE = 19  # where the idle scheduling class is missing (not Linux)
 PARENT_CHECK = 1.0  # s between a planner's looks at whether its server is still there
 _pools: dict[int, ProcessPoolExecutor] = {}  # workers -> the pool this process shares
 _servers = 0  # running apps of this process that may plan in `_pools`
@@ -95,10 +95,7 @@ def _start_worker(server: int) -> None:
     the computer had a start p99 of 66-142 ms, at the idle class 54-61 ms
     (docs/ai.md). A core running only idle-class work counts as free; the computer's
     thinking pause hides a plan that waits a little."""
-    try:
-        os.sched_setscheduler(0, os.SCHED_IDLE, os.sched_param(0))
-    except (AttributeError, OSError):
-        os.nice(WORKER_NICE)
+    run_when_idle()
     threading.Thread(target=_exit_with, args=(server,), daemon=True).start()
     warm_up()
 

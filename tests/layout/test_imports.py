@@ -11,16 +11,18 @@ import pytest
 SERVER = Path(__file__).resolve().parents[2] / "server"
 
 # What each layer may import besides itself. `codec` and `config` are leaves everyone may
-# use; `app`, `__main__` and `embedded` wire the layers together and may import anything.
+# use (`priority` too, for the rooms); `app`, `__main__` and `embedded` wire the layers
+# together and may import anything.
 ALLOWED: dict[str, set[str]] = {
     "codec": set(),
     "config": set(),
+    "priority": set(),
     "engine": {"codec"},
     "rules": {"engine", "codec"},
     "ai": {"rules", "engine", "codec"},
     "protocol": {"rules", "engine", "codec"},
     "store": {"codec"},
-    "rooms": {"protocol", "store", "ai", "rules", "engine", "codec", "config"},
+    "rooms": {"protocol", "store", "ai", "rules", "engine", "codec", "config", "priority"},
     # cluster: rooms shared among processes over Redis; used by api, uses rooms and store.
     "cluster": {"rooms", "store", "codec", "config"},
     "api": {
