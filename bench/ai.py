@@ -4,6 +4,7 @@ ladder of levels, plan times and per-game counts.
     python -m bench.ai [--games 200] [--runouts 200] [--only runouts,greedy,ladder,loop]
                        [--kind eight_ball] [--seed 0] [--jobs 1]
                        [--rooms 2] [--workers 1] [--seconds 10] [--configs 1200]
+                       [--save outcomes.json] [--paired earlier.json]
 
 `calibrate`: the pot chance the search plans with against the engine's measured rates
 under the top level's noise (what `geometry.FASTFIZ` was fitted to).
@@ -14,12 +15,19 @@ computer seats plan in threads or in worker processes, as `server.rooms.computer
 Every shot is played with the executing player's noise (`Bot.execute`); the greedy
 baseline plays with the top level's noise (FastFiz: sigma aim 0.125 deg, speed 0.075 m/s,
 tip 0.5 mm). Breaks alternate. Shares are printed with a 95 % Wilson interval.
+
+`--save` writes each rack's and game's outcome by seed; `--paired` compares this run with
+such a file seed by seed. A seed gives the same rack and the same noise draws, so two
+versions of the search differ only where their play differs: the sign test on the seeds
+only one of them won detects a change of a few points that two 200-rack shares (each
+about +-6 points) cannot.
 """
 
 from __future__ import annotations
 
 import argparse
 import asyncio
+import json
 import math
 import statistics
 import sys
@@ -134,6 +142,36 @@ def share(successes: int, n: int) -> str:
     lo, hi = wilson(successes, n)
     pct = 100 * successes / n if n else 0.0
     return f"{successes}/{n} = {pct:.1f} % (95 % CI {100 * lo:.1f}-{100 * hi:.1f} %)"
+
+
+def sign_test(only_a: int, only_b: int) -> float:
+    """Two-sided exact p of a paired comparison (McNemar's test): the chance, were both
+    versions equally strong, of a split of the discordant seeds at least this uneven."""
+    n, k = only_a + only_b, min(only_a, only_b)
+    if n == 0:
+        return 1.0
+    tail = sum(math.comb(n, i) for i in range(k + 1)) / 2**n
+    return min(1.0, 2 * tail)
+
+
+Outcomes = dict[str, dict[str, bool]]  # comparison -> seed (as text) -> won
+
+
+def report_paired(now: Outcomes, before: Outcomes, label: str) -> None:
+    """Each comparison of this run against the same one in `before`, on their common seeds."""
+    for name, results in now.items():
+        earlier = before.get(name, {})
+        common = [s for s in results if s in earlier]
+        if not common:
+            continue
+        here = sum(results[s] and not earlier[s] for s in common)
+        there = sum(earlier[s] and not results[s] for s in common)
+        won_now = sum(results[s] for s in common)
+        won_then = sum(earlier[s] for s in common)
+        print(
+            f"paired with {label}, {name}: {won_now} against {won_then} of {len(common)};"
+            f" won only now {here}, only then {there}; sign test p = {sign_test(here, there):.3f}"
+        )
 
 
 @dataclass
@@ -445,8 +483,9 @@ def report_counts(counts: Counts, names: list[str]) -> None:
         )
 
 
-def match(kind: str, strong: str, weak: str, games: int, seed: int, jobs: int) -> None:
-    """`games` games of `strong` against `weak`, breaks and seats alternating."""
+def match(kind: str, strong: str, weak: str, games: int, seed: int, jobs: int) -> dict[str, bool]:
+    """`games` games of `strong` against `weak`, breaks and seats alternating: whether
+    `strong` won each, by seed."""
     args = []
     for i in range(games):
         names = (strong, weak) if i % 2 == 0 else (weak, strong)
@@ -455,8 +494,10 @@ def match(kind: str, strong: str, weak: str, games: int, seed: int, jobs: int) -
     results = _map(_game_job, args, jobs)
     wins = stopped = 0
     total = Counts()
-    for (_, names, _, _), (winner, counts) in zip(args, results, strict=True):
+    won: dict[str, bool] = {}
+    for (_, names, _, game_seed), (winner, counts) in zip(args, results, strict=True):
         total.add(counts)
+        won[str(game_seed)] = winner is not None and names[winner] == strong
         if winner is None:
             stopped += 1
         elif names[winner] == strong:
@@ -464,6 +505,7 @@ def match(kind: str, strong: str, weak: str, games: int, seed: int, jobs: int) -
     print(f"  {kind}: {strong} vs {weak}: {strong} wins {share(wins, games)}", end="")
     print(f"; {stopped} stopped at {MAX_TURNS} turns; {time.perf_counter() - t0:.0f} s")
     report_counts(total, [strong, weak])
+    return won
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -478,14 +520,22 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--workers", type=int, default=1, help="planner processes (loop)")
     parser.add_argument("--seconds", type=float, default=10.0, help="per mode (loop)")
     parser.add_argument("--configs", type=int, default=1200, help="pots measured (calibrate)")
+    parser.add_argument("--save", help="write each rack's and game's outcome by seed (JSON)")
+    parser.add_argument("--paired", help="compare seed by seed with a file --save wrote")
     args = parser.parse_args(argv)
     parts = set(args.only.split(","))
+    outcomes: Outcomes = {}
+    before: Outcomes | None = None
+    if args.paired:  # read first: a wrong path fails now, not after the games
+        with open(args.paired) as earlier:
+            before = json.load(earlier)
     print(f"bench.ai: levels {', '.join(LEVELS)}; seed {args.seed}; jobs {args.jobs}")
     if "runouts" in parts:
         t0 = time.perf_counter()
         seeds = [args.seed + i for i in range(args.runouts)]
         results = _map(runout, seeds, args.jobs)
         cleared = sum(ok for ok, _ in results)
+        outcomes["runouts"] = {str(s): ok for s, (ok, _) in zip(seeds, results, strict=True)}
         total = Counts()
         for _, counts in results:
             total.add(counts)
@@ -494,7 +544,8 @@ def main(argv: list[str] | None = None) -> int:
         report_counts(total, [LEVELS[-1]])
     if "greedy" in parts:
         print("against the greedy baseline (8-ball, alternating breaks):")
-        match("eight_ball", LEVELS[-1], "greedy", args.games, args.seed, args.jobs)
+        won = match("eight_ball", LEVELS[-1], "greedy", args.games, args.seed, args.jobs)
+        outcomes["greedy"] = won
     if "calibrate" in parts:
         calibrate(args.configs, args.seed)
     if "loop" in parts:
@@ -502,7 +553,13 @@ def main(argv: list[str] | None = None) -> int:
     if "ladder" in parts:
         print(f"the ladder ({args.kind}, each level against the one below):")
         for weak, strong in zip(LEVELS, LEVELS[1:], strict=False):
-            match(args.kind, strong, weak, args.games, args.seed, args.jobs)
+            won = match(args.kind, strong, weak, args.games, args.seed, args.jobs)
+            outcomes[f"{args.kind} {strong} vs {weak}"] = won
+    if args.save:
+        with open(args.save, "w") as out:
+            json.dump(outcomes, out, indent=1, sort_keys=True)
+    if before is not None:
+        report_paired(outcomes, before, args.paired)
     return 0
 
 
