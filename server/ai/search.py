@@ -44,6 +44,11 @@ LOOK_SIMS = (
 )  # look for a safety when the best pot is worth less than this
 TIPS = ((0.0, 0.0), (0.0, 0.35), (0.0, -0.35), (0.3, 0.15), (-0.3, 0.15))
 SPEED_FACTORS = (1.25, 1.8, 3.0, 4.6)
+# With few pots on (late in a rack, or a table with few open balls) the budget would go
+# mostly unspent: each pot gets finer strokes, for the exact position a runout needs.
+FEW_POTS = 4
+FINE_SPEED_FACTORS = (1.1, 1.4, 1.8, 2.4, 3.0, 3.8, 4.6)
+FINE_TIPS = (*TIPS, (0.0, 0.18), (0.0, -0.18), (0.3, -0.15), (-0.3, -0.15))
 SAFETY_SPEEDS = (0.7, 1.4, 2.6)
 KICK_SPEEDS = (1.5, 2.6, 4.0)
 KICK_OFFSETS = (-2.0, -0.8, 0.0, 0.8, 2.0)  # degrees off the mirror-image line
@@ -320,16 +325,20 @@ class Search:
     def pot_candidates(self, balls: BallSet, pairs: int) -> list[Candidate]:
         options = pot_options(self.table, balls, self.targets(self.pos), self.plan_sigma())
         needs_call = self.rules.requires_call(self.pos)
+        fine = self.level.lookahead > 0 and len(options) <= FEW_POTS
         out = []
         for option in options[:pairs]:
-            out.extend(self._variants(option, needs_call))
+            out.extend(self._variants(option, needs_call, fine))
         return out
 
-    def _variants(self, option: PotOption, needs_call: bool) -> list[Candidate]:
+    def _variants(self, option: PotOption, needs_call: bool, fine: bool) -> list[Candidate]:
+        """The strokes tried on one pot: the level's speeds and tips, or the finer set."""
         base = speed_for(option)
+        speeds = FINE_SPEED_FACTORS if fine else SPEED_FACTORS[: self.level.speeds]
+        tips = FINE_TIPS if fine else TIPS[: self.level.tips]
         out = []
-        for factor in SPEED_FACTORS[: self.level.speeds]:
-            for side, height in TIPS[: self.level.tips]:
+        for factor in speeds:
+            for side, height in tips:
                 out.append(
                     Candidate(
                         aimed(option.angle, min(base * factor, 0.85 * MAX_SPEED), side, height),
