@@ -492,16 +492,14 @@ def match(kind: str, strong: str, weak: str, games: int, seed: int, jobs: int) -
         args.append((kind, names, (i // 2) % 2, seed + i))
     t0 = time.perf_counter()
     results = _map(_game_job, args, jobs)
-    wins = stopped = 0
+    stopped = 0
     total = Counts()
     won: dict[str, bool] = {}
     for (_, names, _, game_seed), (winner, counts) in zip(args, results, strict=True):
         total.add(counts)
         won[str(game_seed)] = winner is not None and names[winner] == strong
-        if winner is None:
-            stopped += 1
-        elif names[winner] == strong:
-            wins += 1
+        stopped += winner is None
+    wins = sum(won.values())
     print(f"  {kind}: {strong} vs {weak}: {strong} wins {share(wins, games)}", end="")
     print(f"; {stopped} stopped at {MAX_TURNS} turns; {time.perf_counter() - t0:.0f} s")
     report_counts(total, [strong, weak])
