@@ -9,13 +9,14 @@ import pytest
 
 from server.ai import LEVELS, Bot, Turn, play_turn
 from server.ai.geometry import pot_options
-from server.ai.search import FEW_POTS, FINE_SPEED_FACTORS, FINE_TIPS
+from server.ai.levels import BY_NAME
+from server.ai.search import FEW_POTS, FINE_SPEED_FACTORS, FINE_TIPS, Candidate, Search, perturb
 from server.codec import to_data
 from server.engine import CUE, MAX_SPEED, MAX_TIP, Shot, simulate
 from server.rules import ANYWHERE, BEHIND_HEAD_STRING, Decision, Game
 from server.rules.shotfacts import shot_facts
 
-from .conftest import TABLE, R, set_table, straight_line
+from .conftest import TABLE, R, pocket_aim, set_table, straight_line
 
 SOLIDS_STRIPES = {0: "solids", 1: "stripes"}
 
@@ -292,6 +293,45 @@ def test_with_few_pots_on_the_pro_tries_finer_strokes_on_each(eight: Game) -> No
         for cand in strokes:
             per_pot[(cand.target, cand.pocket)] = per_pot.get((cand.target, cand.pocket), 0) + 1
         assert set(per_pot.values()) == {want}, (bot.level.name, per_pot)
+
+
+def test_a_cut_is_aimed_to_allow_for_the_throw(eight: Game) -> None:
+    """A slow 30-degree cut of 0.8 m into a corner: on the ghost-ball line the throw sends
+    the object ball wide of the pocket's centre and it drops in about two noisy strokes
+    of three; with the aim turned for the throw it leaves at the centre and drops far
+    more often under the same noise."""
+    px, py = pocket_aim(3)
+    away = math.atan2(TABLE.width / 2 - py, TABLE.length / 2 - px)
+    obj = (px + 0.8 * math.cos(away), py + 0.8 * math.sin(away))
+    line = away + math.pi  # object ball to pocket
+    ghost = (obj[0] - 2 * R * math.cos(line), obj[1] - 2 * R * math.sin(line))
+    approach = line + math.radians(30)
+    cue = (ghost[0] - 0.6 * math.cos(approach), ghost[1] - 0.6 * math.sin(approach))
+    game = set_table(eight, {0: cue, 1: obj, 9: (0.4, 0.3), 8: (0.5, 1.0)}, groups=SOLIDS_STRIPES)
+    pro = BY_NAME["pro"]
+    noise = np.random.default_rng(1).standard_normal((60, 4))
+    search = Search(TABLE, game.rules, game.position(), 0, pro, noise, noise[:0])
+    option = next(o for o in pot_options(TABLE, game.balls, [1], pro.aim) if o.pocket == 3)
+    ghost_line = search._variants(option, False, False)[0]  # the softest centre-ball stroke
+    cand = Candidate(ghost_line.shot, None, "pot", 1, 3)
+    search.allow_for_throw(game.balls, cand)
+    want = math.atan2(py - obj[1], px - obj[0])
+
+    def miss(shot: Shot) -> float:
+        leaves = search._departure(game.balls, shot, 1)
+        assert leaves is not None
+        return abs(math.degrees(math.remainder(leaves - want, 2 * math.pi)))
+
+    def pots(shot: Shot) -> int:
+        balls = game.balls
+        runs = (simulate(TABLE, balls, perturb(shot, row, pro)) for row in noise)
+        return sum(1 in shot_facts(balls, run).pocketed for run in runs)
+
+    assert miss(ghost_line.shot) > 1.0  # degrees: the throw of a slow cut
+    assert miss(cand.shot) < 0.2
+    assert cand.shot.speed == ghost_line.shot.speed and cand.shot.tip == ghost_line.shot.tip
+    before, after = pots(ghost_line.shot), pots(cand.shot)
+    assert before < 45 and after >= before + 8, (before, after)
 
 
 def test_a_plan_never_runs_more_simulations_than_its_budget(eight: Game) -> None:
