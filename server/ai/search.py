@@ -308,7 +308,7 @@ class Search:
             return
         err = math.remainder(first - want, 2 * math.pi)
         slope = math.remainder(second - first, 2 * math.pi) / THROW_STEP
-        if abs(slope) < 1.0:  # the object ball turns faster than the cue: not a clean hit
+        if abs(slope) < 1.0:  # the object ball hardly follows the aim: not a clean hit
             return
         step = -err / slope
         if abs(step) <= THROW_MAX:
