@@ -329,7 +329,7 @@ class Search:
         k = min(int(until / frames.tick) - 1, len(frames) - 1)
         if k < 0 or (k + 1) * frames.tick <= contact.time:
             return None
-        row = int(np.flatnonzero(result.ids == target)[0])
+        row = result.final.index(target)  # the rows of the frames are those of the set
         x, y = frames.positions[k, row]
         ox, oy = balls.position_of(target)
         if math.hypot(x - ox, y - oy) < 1e-3:
