@@ -371,11 +371,11 @@ CALIBRATE_TRIALS = 30  # noisy strokes per configuration
 
 def pot_rates(configs: int, seed: int) -> np.ndarray:
     """Random one-ball pots (cue ball, object ball and pocket anywhere the geometry allows),
-    each played `CALIBRATE_TRIALS` times with the top level's noise (ghost-ball aim, centre
-    ball, 1.8 or 2.4 times the speed that just reaches): rows of (d1, d2, cut, side pocket,
-    cos of the approach to the mouth, measured rate)."""
+    each played `CALIBRATE_TRIALS` times with the top level's noise (centre ball, 1.8 or 2.4
+    times the speed that just reaches, aimed for the throw as the computer aims): rows of
+    (d1, d2, cut, side pocket, cos of the approach to the mouth, measured rate)."""
     from server.ai.geometry import pockets_of
-    from server.ai.search import aimed, perturb
+    from server.ai.search import aim_for_throw, aimed, perturb
     from server.engine import BallSet, Table, simulate
 
     table = Table.pool("9ft")
@@ -396,6 +396,7 @@ def pot_rates(configs: int, seed: int) -> np.ndarray:
         o = options[int(rng.integers(len(options)))]
         factor = (1.8, 2.4)[int(rng.integers(2))]
         shot = aimed(o.angle, min(speed_for(o) * factor, 0.85 * 12.0), 0.0, 0.0)
+        shot, _ = aim_for_throw(table, balls, shot, 1, o.pocket)
         made = 0
         for _ in range(CALIBRATE_TRIALS):
             final = simulate(table, balls, perturb(shot, rng.standard_normal(4), level)).final

@@ -95,6 +95,57 @@ def perturb(shot: Shot, noise: np.ndarray, level: Level) -> Shot:
     )
 
 
+def aim_for_throw(
+    table: Table, balls: BallSet, shot: Shot, target: int, pocket: int
+) -> tuple[Shot, int]:
+    """`shot` with its aim turned so that the exact stroke sends `target` at the centre of
+    `pocket`, and the simulations that took. The ghost-ball line ignores the throw of the
+    collision (the friction between the balls turns the object ball 1-3 degrees towards
+    the cue ball's path on a slow cut, in the engine as on a real table); under the pro's
+    aim error that alone missed a 30-degree cut of 0.8 m a third of the time
+    (docs/ai.md). A secant of two engine shots finds the aim; speed and tip stay."""
+    ox, oy = balls.position_of(target)
+    ax, ay = pockets_of(table).aims[pocket]
+    want = math.atan2(ay - oy, ax - ox)
+    first = departure(table, balls, shot, target)
+    if first is None:
+        return shot, 1
+    nudged = clamp_shot(shot.angle + THROW_STEP, shot.speed, *shot.tip)
+    second = departure(table, balls, nudged, target)
+    if second is None:
+        return shot, 2
+    err = math.remainder(first - want, 2 * math.pi)
+    slope = math.remainder(second - first, 2 * math.pi) / THROW_STEP
+    if abs(slope) < 1.0:  # the object ball hardly follows the aim: not a clean hit
+        return shot, 2
+    step = -err / slope
+    if abs(step) > THROW_MAX:
+        return shot, 2
+    return clamp_shot(shot.angle + step, shot.speed, *shot.tip), 2
+
+
+def departure(table: Table, balls: BallSet, shot: Shot, target: int) -> float | None:
+    """The direction `target` leaves in when `shot` hits it first (from the engine's
+    frames, so with the throw), or None when it is not the first ball hit or is stopped
+    at once."""
+    result = simulate(table, balls, shot)
+    contact = next((e for e in result.events if e.kind == "ball"), None)
+    if contact is None or set(contact.ids) != {CUE, target}:
+        return None
+    later = [e.time for e in result.events if e.time > contact.time and target in e.ids]
+    until = min([*later, contact.time + THROW_LOOK])
+    frames = result.frames
+    k = min(int(until / frames.tick) - 1, len(frames) - 1)
+    if k < 0 or (k + 1) * frames.tick <= contact.time:
+        return None
+    row = result.final.index(target)  # the rows of the frames are those of the set
+    x, y = frames.positions[k, row]
+    ox, oy = balls.position_of(target)
+    if math.hypot(x - ox, y - oy) < 1e-3:
+        return None
+    return math.atan2(y - oy, x - ox)
+
+
 @dataclass
 class Candidate:
     """A stroke being considered. value0: its score without noise; value: with noise."""
@@ -287,54 +338,12 @@ class Search:
         return chosen
 
     def allow_for_throw(self, balls: BallSet, cand: Candidate) -> None:
-        """Turn a pot's aim so that the exact stroke sends its ball at the pocket's centre.
-        The ghost-ball line ignores the throw of the collision (the friction between the
-        balls turns the object ball 1-3 degrees towards the cue ball's path on a slow cut,
-        in the engine as on a real table); under the pro's aim error that alone missed a
-        30-degree cut of 0.8 m a third of the time (docs/ai.md). A secant of two engine
-        shots finds the aim; the pot's speed and tip stay as they were."""
+        """Turn a pot's aim for the throw (`aim_for_throw`); its simulations count against
+        the budget."""
         if cand.kind != "pot" or cand.target is None or cand.pocket is None:
             return
-        ox, oy = balls.position_of(cand.target)
-        ax, ay = pockets_of(self.table).aims[cand.pocket]
-        want = math.atan2(ay - oy, ax - ox)
-        shot = cand.shot
-        first = self._departure(balls, shot, cand.target)
-        if first is None:
-            return
-        nudged = clamp_shot(shot.angle + THROW_STEP, shot.speed, *shot.tip)
-        second = self._departure(balls, nudged, cand.target)
-        if second is None:
-            return
-        err = math.remainder(first - want, 2 * math.pi)
-        slope = math.remainder(second - first, 2 * math.pi) / THROW_STEP
-        if abs(slope) < 1.0:  # the object ball hardly follows the aim: not a clean hit
-            return
-        step = -err / slope
-        if abs(step) <= THROW_MAX:
-            cand.shot = clamp_shot(shot.angle + step, shot.speed, *shot.tip)
-
-    def _departure(self, balls: BallSet, shot: Shot, target: int) -> float | None:
-        """The direction `target` leaves in when `shot` hits it first (from the engine's
-        frames, so with the throw), or None when it is not the first ball hit or is
-        stopped at once."""
-        self.sims += 1
-        result = simulate(self.table, balls, shot)
-        contact = next((e for e in result.events if e.kind == "ball"), None)
-        if contact is None or set(contact.ids) != {CUE, target}:
-            return None
-        later = [e.time for e in result.events if e.time > contact.time and target in e.ids]
-        until = min([*later, contact.time + THROW_LOOK])
-        frames = result.frames
-        k = min(int(until / frames.tick) - 1, len(frames) - 1)
-        if k < 0 or (k + 1) * frames.tick <= contact.time:
-            return None
-        row = result.final.index(target)  # the rows of the frames are those of the set
-        x, y = frames.positions[k, row]
-        ox, oy = balls.position_of(target)
-        if math.hypot(x - ox, y - oy) < 1e-3:
-            return None
-        return math.atan2(y - oy, x - ox)
+        cand.shot, used = aim_for_throw(self.table, balls, cand.shot, cand.target, cand.pocket)
+        self.sims += used
 
     def look_ahead(self, balls: BallSet, cand: Candidate) -> bool:
         """Replace the quick estimate of the position a pot leaves by a search of the next

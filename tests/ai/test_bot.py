@@ -10,7 +10,15 @@ import pytest
 from server.ai import LEVELS, Bot, Turn, play_turn
 from server.ai.geometry import pot_options
 from server.ai.levels import BY_NAME
-from server.ai.search import FEW_POTS, FINE_SPEED_FACTORS, FINE_TIPS, Candidate, Search, perturb
+from server.ai.search import (
+    FEW_POTS,
+    FINE_SPEED_FACTORS,
+    FINE_TIPS,
+    Candidate,
+    Search,
+    departure,
+    perturb,
+)
 from server.codec import to_data
 from server.engine import CUE, MAX_SPEED, MAX_TIP, Shot, simulate
 from server.rules import ANYWHERE, BEHIND_HEAD_STRING, Decision, Game
@@ -318,7 +326,7 @@ def test_a_cut_is_aimed_to_allow_for_the_throw(eight: Game) -> None:
     want = math.atan2(py - obj[1], px - obj[0])
 
     def miss(shot: Shot) -> float:
-        leaves = search._departure(game.balls, shot, 1)
+        leaves = departure(TABLE, game.balls, shot, 1)
         assert leaves is not None
         return abs(math.degrees(math.remainder(leaves - want, 2 * math.pi)))
 
