@@ -15,6 +15,12 @@ from server.engine import CUE, BallSet, Table
 
 MAX_CUT = math.radians(78.0)  # thinner cuts are not tried
 MIN_AIM_SIGMA = math.radians(0.2)  # position play plans with at least this aim error
+# How open a ball is (`open_share`): its best pot from a cue ball this far behind the ghost
+# ball, straight or cut by one of these angles; a chance of OPEN_EASY counts as fully open.
+OPEN_REACH = 0.3
+OPEN_CUTS = np.radians(np.array([0.0, 15.0, -15.0, 30.0, -30.0, 45.0, -45.0]))
+OPEN_EASY = 0.5
+GEOMETRIC_JAW = 0.008  # m the plain estimate widens a mouth's clean window by
 
 
 @dataclass(frozen=True)
@@ -31,7 +37,7 @@ class ChanceModel:
     aim_scale: float = 1.0
     floor: float = 0.0
     cut: float = 0.0
-    jaw: float = 0.008
+    jaw: float = GEOMETRIC_JAW
     side: float = 0.0
 
 
@@ -191,18 +197,30 @@ def _open_kernel(
     cue_row: int,
     aims: np.ndarray,
     outward: np.ndarray,
+    mouths: np.ndarray,
     r: float,
+    length: float,
+    width: float,
+    sigma: float,
+    cuts: np.ndarray,
 ) -> float:
-    """The share of the balls `rows` with a clear path to some pocket."""
+    """How pottable the balls `rows` are, on average: each counts by its best pot from a
+    cue ball placed `OPEN_REACH` behind the ghost ball (straight or at one of `cuts`),
+    on the bed with a clear path to it, and by a clear path to the pocket; a chance of
+    `OPEN_EASY` or more counts in full."""
     n = len(positions)
-    clear = 0
+    total = 0.0
     for i in range(len(rows)):
         row = rows[i]
         ox, oy = positions[row, 0], positions[row, 1]
+        best = 0.0
         for p in range(len(aims)):
             tx, ty = aims[p, 0] - ox, aims[p, 1] - oy
-            dist = max(math.sqrt(tx * tx + ty * ty), 1e-9)
-            if (tx * outward[p, 0] + ty * outward[p, 1]) / dist <= 0.45:
+            dist2 = max(math.sqrt(tx * tx + ty * ty), 1e-9)
+            ux, uy = tx / dist2, ty / dist2
+            cos_in = ux * outward[p, 0] + uy * outward[p, 1]
+            window = (mouths[p] * min(max(cos_in, 0.0), 1.0) - 2 * r) / 2 + GEOMETRIC_JAW
+            if cos_in <= 0.35 or window <= 0.003:
                 continue
             blocked = False
             for k in range(n):
@@ -214,10 +232,28 @@ def _open_kernel(
                 ):
                     blocked = True
                     break
-            if not blocked:
-                clear += 1
-                break
-    return clear / len(rows)
+            if blocked:
+                continue
+            gx, gy = ox - 2 * r * ux, oy - 2 * r * uy
+            for c in range(len(cuts)):
+                cos_c, sin_c = math.cos(cuts[c]), math.sin(cuts[c])
+                vx, vy = ux * cos_c - uy * sin_c, ux * sin_c + uy * cos_c  # the approach
+                cx, cy = gx - OPEN_REACH * vx, gy - OPEN_REACH * vy
+                if cx < r or cx > length - r or cy < r or cy > width - r:
+                    continue
+                clear = True
+                for k in range(n):
+                    if not on[k] or k == cue_row or k == row:  # noqa: SIM109 (numba)
+                        continue
+                    if _near_segment(cx, cy, gx, gy, positions[k, 0], positions[k, 1]) < 2 * r:
+                        clear = False
+                        break
+                if not clear:
+                    continue
+                s_aim = OPEN_REACH * sigma / (2 * r * max(cos_c, 0.05))
+                best = max(best, math.erf((window / dist2) / (s_aim * math.sqrt(2.0))))
+        total += min(best / OPEN_EASY, 1.0)
+    return total / len(rows)
 
 
 def pot_options(
@@ -339,14 +375,28 @@ def speed_for(option: PotOption, u_roll_g: float = 0.0981) -> float:
 
 
 def open_share(table: Table, balls: BallSet, targets: list[int]) -> float:
-    """The share of `targets` on the table that have a clear path to some pocket from where
-    they lie (a ball in a cluster or behind others has none): how open the table is."""
+    """How open the table is for `targets`, from 0 to 1: each ball on the table counts by
+    how pottable it is from a cue ball placed well for it (`_open_kernel`). A ball in a
+    cluster, behind others, or whose only clear line to a pocket needs the cue ball off
+    the bed or behind other balls (frozen on a rail beside an opponent's ball) counts
+    little; a clear path alone counted such a ball as open."""
     want, rows, cue_row = _rows_of(balls, targets)
     if not want:
         return 1.0
     pk = pockets_of(table)
     return float(
         _open_kernel(
-            balls.positions, balls.on_table, rows, cue_row, pk.aims, pk.outward, table.ball_radius
+            balls.positions,
+            balls.on_table,
+            rows,
+            cue_row,
+            pk.aims,
+            pk.outward,
+            pk.mouths,
+            float(table.ball_radius),
+            float(table.length),
+            float(table.width),
+            MIN_AIM_SIGMA,
+            OPEN_CUTS,
         )
     )
