@@ -20,8 +20,8 @@ def test_a_ball_near_a_pocket_in_the_open_is_fully_open() -> None:
 def test_a_rail_ball_is_open_until_a_ball_is_frozen_beside_it() -> None:
     alone = BallSet.place({0: (0.6, 0.6), 11: ON_RAIL})
     assert open_share(TABLE, alone, [11]) == 1.0  # along the rail into either corner
-    # A ball frozen beside it on the rail: the line up the rail to the far corner is still
-    # clear, but the cue ball would have to come from where that ball lies.
+    # A ball frozen beside it on the rail: the way along the rail is shut, and the cue ball
+    # would have to come from where that ball lies to pot it anywhere else.
     beside = BallSet.place({0: (0.6, 0.6), 11: ON_RAIL, 5: (ON_RAIL[0], ON_RAIL[1] + 2 * R)})
     assert open_share(TABLE, beside, [11]) < 0.2
     assert open_share(TABLE, beside, [5, 11]) < 0.6
@@ -35,3 +35,26 @@ def test_a_ball_in_a_cluster_is_not_open() -> None:
     balls = BallSet.place({0: (0.6, 0.6), 9: near_pocket, **cluster})
     assert open_share(TABLE, balls, [3]) == 0.0
     assert open_share(TABLE, balls, [3, 9]) == 0.5  # the mean over the balls
+
+
+def test_balls_with_a_clear_line_but_no_way_in_are_not_open() -> None:
+    """A traced runout's last two stripes (seed 301): each has a clear line to a pocket,
+    so a clear line alone counted the table fully open, yet no cue-ball position on the
+    bed reaches either: the 9 lies beside the 6 and behind the 3, the 11 by the foot rail
+    between the 6 and the 7 with the 4 in the corner. The runout ended there on a
+    safety."""
+    spots = {
+        0: (0.333, 0.9),
+        1: (1.373, 0.087),
+        2: (1.623, 0.55),
+        3: (2.417, 0.463),
+        4: (2.505, 1.235),
+        5: (1.877, 1.237),
+        6: (2.43, 0.68),
+        7: (2.453, 1.113),
+        8: (1.6, 0.327),
+        9: (2.357, 0.693),
+        11: (2.493, 0.967),
+    }
+    balls = BallSet.place(spots)
+    assert open_share(TABLE, balls, [9, 11]) < 0.2
