@@ -115,6 +115,42 @@ def _near_segment(ax: float, ay: float, bx: float, by: float, px: float, py: flo
     return math.sqrt(dx * dx + dy * dy)
 
 
+@njit(cache=True, inline="always")
+def _path_clear(
+    ax: float,
+    ay: float,
+    bx: float,
+    by: float,
+    positions: np.ndarray,
+    on: np.ndarray,
+    skip_a: int,
+    skip_b: int,
+    r: float,
+) -> bool:
+    """Whether no ball on the table but rows `skip_a` and `skip_b` (the balls that travel
+    it) lies within a ball's width of the path a->b."""
+    for k in range(len(positions)):
+        if not on[k] or k == skip_a or k == skip_b:  # noqa: SIM109 (numba)
+            continue
+        if _near_segment(ax, ay, bx, by, positions[k, 0], positions[k, 1]) < 2 * r:
+            return False
+    return True
+
+
+@njit(cache=True, inline="always")
+def _clean_window(mouth: float, cos_in: float, r: float, jaw: float) -> float:
+    """Half the lateral room a ball has to drop through a mouth of width `mouth` that it
+    approaches at `cos_in` to the pocket's normal, widened by `jaw`."""
+    return (mouth * min(max(cos_in, 0.0), 1.0) - 2 * r) / 2 + jaw
+
+
+@njit(cache=True, inline="always")
+def _chance(window: float, dist2: float, sigma_obj: float) -> float:
+    """The chance a ball sent `dist2` to the pocket with an angle error of `sigma_obj`
+    (normal, radians) stays within `window` of the mouth's centre."""
+    return math.erf((window / dist2) / (sigma_obj * math.sqrt(2.0)))
+
+
 @njit(cache=True)
 def _pot_kernel(
     positions: np.ndarray,
@@ -138,7 +174,7 @@ def _pot_kernel(
     approach, a ghost ball off the bed or any ball within a ball's width of either path;
     the chance is that of the object ball's angle error against the mouth's clean window.
     Compiled: the search calls it for every simulated outcome (the table it leaves)."""
-    n_t, n_p, n = len(rows), len(aims), len(positions)
+    n_t, n_p = len(rows), len(aims)
     ok = np.zeros((n_t, n_p), dtype=np.bool_)
     chance = np.zeros((n_t, n_p))
     angle = np.zeros((n_t, n_p))
@@ -160,32 +196,23 @@ def _pot_kernel(
             dist1 = max(math.sqrt(vx * vx + vy * vy), 1e-9)
             cc = (ux * vx + uy * vy) / dist1
             cos_in = ux * outward[p, 0] + uy * outward[p, 1]
-            window = (mouths[p] * min(max(cos_in, 0.0), 1.0) - 2 * r) / 2 + jaw
-            window -= side_cost * side[p]
+            window = _clean_window(mouths[p], cos_in, r, jaw) - side_cost * side[p]
             d1[i, p], d2[i, p], cos_cut[i, p] = dist1, dist2, cc
             angle[i, p] = math.atan2(vy, vx)
             if cc <= min_cos or window <= 0.003 or cos_in <= 0.35:
                 continue
             if gx < r or gx > length - r or gy < r or gy > width - r:
                 continue
-            blocked = False
-            for k in range(n):
-                if not on[k] or k == cue_row or k == row:  # noqa: SIM109 (numba)
-                    continue
-                px, py = positions[k, 0], positions[k, 1]
-                if (
-                    _near_segment(cue_x, cue_y, gx, gy, px, py) < 2 * r
-                    or _near_segment(ox, oy, aims[p, 0], aims[p, 1], px, py) < 2 * r
-                ):
-                    blocked = True
-                    break
-            if blocked:
+            if not (
+                _path_clear(cue_x, cue_y, gx, gy, positions, on, cue_row, row, r)
+                and _path_clear(ox, oy, aims[p, 0], aims[p, 1], positions, on, cue_row, row, r)
+            ):
                 continue
             ok[i, p] = True
             s_aim = aim_scale * dist1 * sigma / (2 * r * max(cc, 0.05))
             s_cut = cut_sigma * math.sqrt(max(1.0 - cc * cc, 0.0))
             sigma_obj = math.sqrt(s_aim * s_aim + floor * floor + s_cut * s_cut)
-            chance[i, p] = math.erf((window / dist2) / (sigma_obj * math.sqrt(2.0)))
+            chance[i, p] = _chance(window, dist2, sigma_obj)
     return ok, chance, angle, d1, d2, cos_cut
 
 
@@ -208,7 +235,6 @@ def _open_kernel(
     cue ball placed `OPEN_REACH` behind the ghost ball (straight or at one of `cuts`),
     on the bed with a clear path to it, and by a clear path to the pocket; a chance of
     `OPEN_EASY` or more counts in full."""
-    n = len(positions)
     total = 0.0
     for i in range(len(rows)):
         row = rows[i]
@@ -219,20 +245,10 @@ def _open_kernel(
             dist2 = max(math.sqrt(tx * tx + ty * ty), 1e-9)
             ux, uy = tx / dist2, ty / dist2
             cos_in = ux * outward[p, 0] + uy * outward[p, 1]
-            window = (mouths[p] * min(max(cos_in, 0.0), 1.0) - 2 * r) / 2 + GEOMETRIC_JAW
+            window = _clean_window(mouths[p], cos_in, r, GEOMETRIC_JAW)
             if cos_in <= 0.35 or window <= 0.003:
                 continue
-            blocked = False
-            for k in range(n):
-                if not on[k] or k == cue_row or k == row:  # noqa: SIM109 (numba)
-                    continue
-                if (
-                    _near_segment(ox, oy, aims[p, 0], aims[p, 1], positions[k, 0], positions[k, 1])
-                    < 2 * r
-                ):
-                    blocked = True
-                    break
-            if blocked:
+            if not _path_clear(ox, oy, aims[p, 0], aims[p, 1], positions, on, cue_row, row, r):
                 continue
             gx, gy = ox - 2 * r * ux, oy - 2 * r * uy
             for c in range(len(cuts)):
@@ -241,17 +257,10 @@ def _open_kernel(
                 cx, cy = gx - OPEN_REACH * vx, gy - OPEN_REACH * vy
                 if cx < r or cx > length - r or cy < r or cy > width - r:
                     continue
-                clear = True
-                for k in range(n):
-                    if not on[k] or k == cue_row or k == row:  # noqa: SIM109 (numba)
-                        continue
-                    if _near_segment(cx, cy, gx, gy, positions[k, 0], positions[k, 1]) < 2 * r:
-                        clear = False
-                        break
-                if not clear:
+                if not _path_clear(cx, cy, gx, gy, positions, on, cue_row, row, r):
                     continue
                 s_aim = OPEN_REACH * sigma / (2 * r * max(cos_c, 0.05))
-                best = max(best, math.erf((window / dist2) / (s_aim * math.sqrt(2.0))))
+                best = max(best, _chance(window, dist2, s_aim))
         total += min(best / OPEN_EASY, 1.0)
     return total / len(rows)
 
