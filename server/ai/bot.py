@@ -42,8 +42,10 @@ class Turn:
     push_out: 9-ball, declare a push out before the shot. place: where to put the cue ball
     (ball in hand). call: the pocket called for the 8 (`game.requires_call`). shot: the
     stroke it intends (the room applies `Bot.execute` to it). target / pocket / chance /
-    kind: what it is trying (for hints and logs): kind is "pot", "safety", "kick", "break"
-    or "push"; chance is the share of its noisy trials that pocketed a ball legally.
+    kind / via: what it is trying (for hints and logs): kind is "pot", "safety", "kick",
+    "break" or "push"; a pot's via is "direct", "bank" (off a cushion) or "combo" (the cue
+    ball hits another ball into `target`); chance is the share of its noisy trials that
+    pocketed a ball legally.
     """
 
     decision: str | None = None
@@ -55,6 +57,7 @@ class Turn:
     target: int | None = None
     pocket: int | None = None
     chance: float | None = None
+    via: str | None = None
 
 
 class Bot:
@@ -125,6 +128,7 @@ class Bot:
             target=cand.target,
             pocket=cand.pocket,
             chance=cand.pot_rate,
+            via=cand.via if cand.kind == "pot" else None,
         )
 
     def _from_here(

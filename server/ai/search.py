@@ -31,6 +31,7 @@ from .geometry import (
     pot_options,
     speed_for,
 )
+from .indirect import bank_options, combo_options
 from .levels import Level
 
 WIN, LOSS = 1.0, -1.0
@@ -65,6 +66,11 @@ SWEEP_ANGLES = 40
 THROW_STEP = math.radians(0.05)  # the aim step of the secant that allows for the throw
 THROW_MAX = math.radians(1.0)  # larger corrections are not trusted (a kiss, a near miss)
 THROW_LOOK = 0.04  # s after the contact at which the object ball's direction is read
+# Banks and combinations (`indirect`), for the levels that look ahead: the best routes of
+# each, and the strokes tried on each (a bank's route comes with an aim per restitution).
+BANK_ROUTES, COMBOS = 2, 2
+BANK_SPEED_FACTORS = (1.25, 1.8, 2.6)
+COMBO_SPEED_FACTORS = (1.25, 1.8, 3.0)
 
 
 def clamp_shot(angle: float, speed: float, side: float, height: float) -> Shot:
@@ -156,6 +162,7 @@ class Candidate:
     target: int | None = None
     pocket: int | None = None
     prior: float = 0.0
+    via: str = "direct"  # a pot's route: "direct", "bank" or "combo" (`PotOption.via`)
     value0: float = -math.inf
     value: float = -math.inf
     pot_rate: float = 0.0
@@ -340,7 +347,9 @@ class Search:
     def allow_for_throw(self, balls: BallSet, cand: Candidate) -> None:
         """Turn a pot's aim for the throw (`aim_for_throw`); its simulations count against
         the budget."""
-        if cand.kind != "pot" or cand.target is None or cand.pocket is None:
+        if cand.kind != "pot" or cand.via != "direct" or cand.target is None:
+            return
+        if cand.pocket is None:
             return
         cand.shot, used = aim_for_throw(self.table, balls, cand.shot, cand.target, cand.pocket)
         self.sims += used
@@ -402,6 +411,42 @@ class Search:
         out = []
         for option in options[:pairs]:
             out.extend(self._variants(option, needs_call, fine))
+        if self.level.lookahead:
+            out.extend(self.indirect_candidates(balls, needs_call))
+        return out
+
+    def indirect_candidates(self, balls: BallSet, needs_call: bool) -> list[Candidate]:
+        """The best banks and combinations, a few strokes each (centre ball, and follow
+        for a combination); the simulations judge them like any pot. In 9-ball the
+        combination may drop any ball (the lowest is hit first), in 8-ball only the
+        shooter's own."""
+        targets = self.targets(self.pos)
+        sigma = self.plan_sigma()
+        banks = bank_options(self.table, balls, targets, sigma)
+        routes = sorted({(o.target, o.pocket, o.chance) for o in banks}, key=lambda k: -k[2])
+        keep = set(routes[:BANK_ROUTES])
+        chosen = [o for o in banks if (o.target, o.pocket, o.chance) in keep]
+        objects = self.pos.object_balls if self.rules.kind == "nine_ball" else targets
+        combos = combo_options(self.table, balls, targets, objects, sigma)[:COMBOS]
+        out = []
+        for option in chosen + combos:
+            base = speed_for(option)
+            fast = option.via == "bank"
+            factors = BANK_SPEED_FACTORS if fast else COMBO_SPEED_FACTORS
+            tips = TIPS[:1] if fast else TIPS[:2]
+            for factor in factors:
+                for side, height in tips:
+                    out.append(
+                        Candidate(
+                            aimed(option.angle, min(base * factor, 0.85 * MAX_SPEED), side, height),
+                            option.pocket if needs_call else None,
+                            "pot",
+                            option.target,
+                            option.pocket,
+                            option.chance,
+                            via=option.via,
+                        )
+                    )
         return out
 
     def _variants(self, option: PotOption, needs_call: bool, fine: bool) -> list[Candidate]:

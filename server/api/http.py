@@ -224,9 +224,10 @@ class Hint(BaseModel):
     angle: float  # cue direction, radians
     speed: float  # cue-ball speed, m/s
     tip: tuple[float, float]  # (side, height) of the cue tip, fractions of the radius
-    target: int | None  # the ball it plays at
+    target: int | None  # the ball it pots (or plays at)
     pocket: int | None  # the pocket it plays for
     chance: float | None  # the share of its noisy trials that pocketed a ball legally
+    via: str | None = None  # a pot's route: "direct", "bank" (off a cushion) or "combo"
 
 
 _HINT_STATUS = {"bad_token": 403, "not_practice": 409, "not_your_turn": 409, "hint_pending": 429}
@@ -269,6 +270,7 @@ async def hint(
         "target": turn.target,
         "pocket": turn.pocket,
         "chance": turn.chance,
+        "via": turn.via,
     }
 
 

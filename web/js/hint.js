@@ -13,7 +13,8 @@ import { drawCue, drawGuide } from './render.js';
 /**
  * @typedef {{level: string, kind: string, place: [number, number] | null,
  *   call: number | null, angle: number, speed: number, tip: [number, number],
- *   target: number | null, pocket: number | null, chance: number | null}} Hint
+ *   target: number | null, pocket: number | null, chance: number | null,
+ *   via?: string | null}} Hint
  */
 
 const SPIN_WORDS = 0.08; // a tip offset (fraction of the radius) below this is "centre"
@@ -50,7 +51,11 @@ export function spinWords(tip) {
  */
 export function describeHint(hint) {
   let what = 'Play safe';
-  if (hint.kind === 'pot' && hint.target !== null) what = `Pot the ${hint.target}`;
+  if (hint.kind === 'pot' && hint.target !== null) {
+    what = `Pot the ${hint.target}`;
+    if (hint.via === 'bank') what = `Bank the ${hint.target} off a cushion`;
+    else if (hint.via === 'combo') what = `Pot the ${hint.target} in a combination`;
+  }
   else if (hint.kind === 'kick') what = 'Kick at it off a cushion';
   else if (hint.kind === 'break') what = 'Break';
   const odds = hint.kind === 'pot' && hint.chance !== null

@@ -31,4 +31,10 @@ test('the caption says what the plan is, its odds for a pot, its speed and spin'
     'Play safe: 2.3 m/s, centre ball.');
   assert.equal(describeHint({ ...base, kind: 'kick', chance: null }),
     'Kick at it off a cushion: 2.3 m/s, draw.');
+  assert.equal(describeHint({ ...base, kind: 'pot', via: 'direct' }),
+    'Pot the 3 (85 % of the computer\'s trials went in): 2.3 m/s, draw.');
+  assert.equal(describeHint({ ...base, kind: 'pot', via: 'bank', chance: 0.4 }),
+    'Bank the 3 off a cushion (40 % of the computer\'s trials went in): 2.3 m/s, draw.');
+  assert.equal(describeHint({ ...base, kind: 'pot', via: 'combo', target: 9 }),
+    'Pot the 9 in a combination (85 % of the computer\'s trials went in): 2.3 m/s, draw.');
 });

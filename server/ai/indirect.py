@@ -1,0 +1,305 @@
+"""Pots that do not go straight from the object ball to the pocket: banks (the object ball
+off one cushion) and combinations (the cue ball sends one ball into another, which drops).
+
+Geometry only, like `geometry.pot_options`: where to aim, whether the paths are clear and a
+rough chance to rank them by; the search simulates each with the engine, so the cushion's
+real rebound and the throw between the balls decide what is played.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from server.engine import CUE, BallSet, Table
+
+from .geometry import GEOMETRIC, MAX_CUT, ChanceModel, PotOption, pockets_of
+
+# The cushion sends a ball back with its normal speed times about this (the engine's
+# e_cushion is 0.85; the friction of the nose and the spin move the rebound too), so a
+# bank is aimed for each of these and the simulations pick the one that drops.
+BANK_RESTITUTIONS = (0.55, 0.7, 0.85)
+BANK_SIGMA = 0.02  # rad the cushion adds to the object ball's error (no two rebounds alike)
+BANK_CLEAR_OF_POCKET = 0.12  # m: a bounce this near a pocket's mouth meets the jaws
+MAX_COMBO_CUT = math.radians(50.0)  # thinner cuts of the second ball are not tried
+MAX_LINK = 1.0  # m from the first ball to the second's ghost ball: longer is hopeless
+MIN_COS_IN = 0.35  # the approach to a mouth must be at most about 70 degrees off square
+
+
+def _clear(
+    positions: np.ndarray, on: np.ndarray, skip: set[int], a: np.ndarray, b: np.ndarray, r: float
+) -> bool:
+    """Whether no ball on the table but the rows `skip` lies within a ball's width of the
+    path a->b."""
+    ab = b - a
+    length2 = max(float(ab @ ab), 1e-12)
+    for k in range(len(positions)):
+        if not on[k] or k in skip:
+            continue
+        t = min(max(float((positions[k] - a) @ ab) / length2, 0.0), 1.0)
+        if float(np.linalg.norm(positions[k] - (a + t * ab))) < 2 * r:
+            return False
+    return True
+
+
+def _sigma(model: ChanceModel, aim_error: float, cut: float, extra: float) -> float:
+    """The object ball's angle error of `model` (its aim term, floor and cut term) plus
+    `extra`, as one sigma."""
+    s_cut = model.cut * math.sin(cut)
+    return math.sqrt((model.aim_scale * aim_error) ** 2 + model.floor**2 + s_cut**2 + extra**2)
+
+
+def _window(model: ChanceModel, mouth: float, cos_in: float, r: float, side: float) -> float:
+    """Half the room a ball has to drop through the mouth, as `geometry.pot_options` has it."""
+    return (mouth * min(max(cos_in, 0.0), 1.0) - 2 * r) / 2 + model.jaw - model.side * side
+
+
+def _on_bed(table: Table, xy: np.ndarray) -> bool:
+    r = table.ball_radius
+    return bool(r <= xy[0] <= table.length - r and r <= xy[1] <= table.width - r)
+
+
+def bank_options(
+    table: Table,
+    balls: BallSet,
+    targets: list[int],
+    aim_sigma: float,
+    model: ChanceModel = GEOMETRIC,
+    restitutions: tuple[float, ...] = BANK_RESTITUTIONS,
+) -> list[PotOption]:
+    """One-cushion banks of the balls `targets`, best chance first: for each pocket and
+    each cushion it is not on, the bounce point where a ball leaving the cushion with its
+    normal speed times e (each of `restitutions`) runs into the pocket (the aims of one
+    route share its best chance, so they come out together). Rejected when a
+    path (cue ball to ghost ball, object ball to cushion, cushion to pocket) is blocked,
+    the bounce is near a pocket, the cut is too thin or the approach to the mouth too
+    steep."""
+    r = table.ball_radius
+    pk = pockets_of(table)
+    ids = balls.ids.tolist()
+    on = balls.on_table
+    positions = balls.positions
+    cue_row = ids.index(CUE)
+    if not on[cue_row]:
+        return []
+    # Each cushion as the line the ball's centre bounces on: (axis, coordinate).
+    lines = ((0, r), (0, table.length - r), (1, r), (1, table.width - r))
+    out: list[PotOption] = []
+    for target in targets:
+        if target == CUE or target not in ids or not on[ids.index(target)]:
+            continue
+        row = ids.index(target)
+        obj = positions[row]
+        for p in range(len(pk.aims)):
+            aim = pk.aims[p]
+            for axis, c in lines:
+                h1, h2 = abs(obj[axis] - c), abs(aim[axis] - c)
+                if h1 < 2 * r or h2 < 0.1:  # frozen on it, or the pocket is on this cushion
+                    continue
+                along = 1 - axis
+                route: list[PotOption] = []
+                for e in restitutions:
+                    # The bounce point: tangential travel shares the run in the ratio of
+                    # h1 to h2 / e (the normal speed leaves at e times what it came in at).
+                    run = aim[along] - obj[along]
+                    first = run / (1 + h2 / (e * h1))
+                    bounce = np.empty(2)
+                    bounce[axis], bounce[along] = c, obj[along] + first
+                    if min(np.hypot(*(pk.aims - bounce).T)) < BANK_CLEAR_OF_POCKET:
+                        continue
+                    option = _bank(
+                        table, positions, on, (cue_row, row), bounce, p, target, aim_sigma, model
+                    )
+                    if option is not None:
+                        route.append(option)
+                # One chance for the route, so that its aims stay together when sorted.
+                best = max((o.chance for o in route), default=0.0)
+                out.extend(replace(o, chance=best) for o in route)
+    out.sort(key=lambda o: -o.chance)
+    return out
+
+
+def _bank(
+    table: Table,
+    positions: np.ndarray,
+    on: np.ndarray,
+    rows: tuple[int, int],
+    bounce: np.ndarray,
+    pocket: int,
+    target: int,
+    aim_sigma: float,
+    model: ChanceModel,
+) -> PotOption | None:
+    """The bank of the ball in row `rows[1]` off `bounce` into `pocket` (the cue ball in
+    row `rows[0]`), or None when it cannot be played. Its chance is the direct pot's
+    estimate over the whole path, with the cushion's scatter added."""
+    r = table.ball_radius
+    pk = pockets_of(table)
+    cue, obj = positions[rows[0]], positions[rows[1]]
+    aim = pk.aims[pocket]
+    leg1, leg2 = bounce - obj, aim - bounce
+    d_leg1, d_leg2 = float(np.linalg.norm(leg1)), float(np.linalg.norm(leg2))
+    if d_leg1 < 1e-6 or d_leg2 < 1e-6:
+        return None
+    u = leg1 / d_leg1
+    cos_in = float(leg2 @ pk.outward[pocket]) / d_leg2
+    window = _window(model, pk.mouths[pocket], cos_in, r, pk.side[pocket])
+    if cos_in <= MIN_COS_IN or window <= 0.003:
+        return None
+    ghost = obj - 2 * r * u
+    if not _on_bed(table, ghost):
+        return None
+    to_ghost = ghost - cue
+    d1 = float(np.linalg.norm(to_ghost))
+    if d1 < 1e-6:
+        return None
+    cos_cut = float(to_ghost @ u) / d1
+    if cos_cut <= math.cos(MAX_CUT):
+        return None
+    skip = set(rows)
+    if not (
+        _clear(positions, on, skip, cue, ghost, r)
+        and _clear(positions, on, skip, obj, bounce, r)
+        and _clear(positions, on, skip, bounce, aim, r)
+    ):
+        return None
+    cut = math.acos(min(1.0, cos_cut))
+    d2 = d_leg1 + d_leg2
+    aim_error = d1 * aim_sigma / (2 * r * max(cos_cut, 0.05))
+    sigma = _sigma(model, aim_error, cut, BANK_SIGMA)
+    return PotOption(
+        target=target,
+        pocket=pocket,
+        angle=math.atan2(to_ghost[1], to_ghost[0]),
+        chance=math.erf((window / d2) / (sigma * math.sqrt(2.0))),
+        d1=d1,
+        d2=d2,
+        cut=cut,
+        via="bank",
+    )
+
+
+def combo_options(
+    table: Table,
+    balls: BallSet,
+    carriers: list[int],
+    objects: list[int],
+    aim_sigma: float,
+    model: ChanceModel = GEOMETRIC,
+) -> list[PotOption]:
+    """Combinations, best chance first: the cue ball sends a ball of `carriers` (a legal
+    first ball) into a ball of `objects`, which drops. Rejected when a path is blocked, a
+    cut is too thin (the second under `MAX_COMBO_CUT`), the first ball is more than
+    `MAX_LINK` from the second's ghost ball or the approach to the mouth is too steep.
+    The chance carries the first ball's angle error through the second collision."""
+    r = table.ball_radius
+    pk = pockets_of(table)
+    ids = balls.ids.tolist()
+    on = balls.on_table
+    positions = balls.positions
+    cue_row = ids.index(CUE)
+    if not on[cue_row]:
+        return []
+    cue = positions[cue_row]
+    present = {b: ids.index(b) for b in ids if b != CUE and on[ids.index(b)]}
+    out: list[PotOption] = []
+    for second in objects:
+        if second not in present:
+            continue
+        row_b = present[second]
+        ball_b = positions[row_b]
+        for p in range(len(pk.aims)):
+            to_pocket = pk.aims[p] - ball_b
+            d2 = float(np.linalg.norm(to_pocket))
+            if d2 < 1e-6:
+                continue
+            u_b = to_pocket / d2
+            cos_in = float(u_b @ pk.outward[p])
+            window = _window(model, pk.mouths[p], cos_in, r, pk.side[p])
+            if cos_in <= MIN_COS_IN or window <= 0.003:
+                continue
+            if not _clear(positions, on, {cue_row, row_b}, ball_b, pk.aims[p], r):
+                continue
+            ghost_b = ball_b - 2 * r * u_b
+            for first in carriers:
+                if first == second or first not in present:
+                    continue
+                option = _combo(
+                    table, positions, on, cue_row, present[first], row_b, cue, ghost_b, u_b
+                )
+                if option is None:
+                    continue
+                d1, link, cut_a, cut_b, angle = option
+                # The first ball's error, then the second's: the angle error grows by
+                # the link over a ball's width at the second collision.
+                error_a = model.aim_scale * d1 * aim_sigma / (2 * r * max(math.cos(cut_a), 0.05))
+                aim_error = error_a * link / (2 * r * max(math.cos(cut_b), 0.05))
+                sigma = _sigma(model, aim_error / model.aim_scale, cut_b, 0.0)
+                chance = math.erf((window / d2) / (sigma * math.sqrt(2.0)))
+                out.append(
+                    PotOption(
+                        target=second,
+                        pocket=p,
+                        angle=angle,
+                        chance=chance,
+                        d1=d1,
+                        d2=d2,
+                        cut=cut_a,
+                        via="combo",
+                        carrier=first,
+                        link=link,
+                        link_cut=cut_b,
+                    )
+                )
+    out.sort(key=lambda o: -o.chance)
+    return out
+
+
+def _combo(
+    table: Table,
+    positions: np.ndarray,
+    on: np.ndarray,
+    cue_row: int,
+    row_a: int,
+    row_b: int,
+    cue: np.ndarray,
+    ghost_b: np.ndarray,
+    u_b: np.ndarray,
+) -> tuple[float, float, float, float, float] | None:
+    """(d1, link, cut on the first ball, cut on the second, cue angle) of the combination
+    through row `row_a`, or None when it cannot be played."""
+    r = table.ball_radius
+    ball_a = positions[row_a]
+    to_b = ghost_b - ball_a
+    link = float(np.linalg.norm(to_b))
+    if link < 1e-6 or link > MAX_LINK:
+        return None
+    u_a = to_b / link
+    cos_b = float(u_a @ u_b)
+    if cos_b <= math.cos(MAX_COMBO_CUT):
+        return None
+    ghost_a = ball_a - 2 * r * u_a
+    if not _on_bed(table, ghost_a):
+        return None
+    to_ghost = ghost_a - cue
+    d1 = float(np.linalg.norm(to_ghost))
+    if d1 < 1e-6:
+        return None
+    cos_a = float(to_ghost @ u_a) / d1
+    if cos_a <= math.cos(MAX_CUT):
+        return None
+    skip = {cue_row, row_a, row_b}
+    if not (
+        _clear(positions, on, skip, cue, ghost_a, r)
+        and _clear(positions, on, skip, ball_a, ghost_b, r)
+    ):
+        return None
+    return (
+        d1,
+        link,
+        math.acos(min(1.0, cos_a)),
+        math.acos(min(1.0, cos_b)),
+        math.atan2(to_ghost[1], to_ghost[0]),
+    )
