@@ -66,8 +66,9 @@ SWEEP_ANGLES = 40
 THROW_STEP = math.radians(0.05)  # the aim step of the secant that allows for the throw
 THROW_MAX = math.radians(1.0)  # larger corrections are not trusted (a kiss, a near miss)
 THROW_LOOK = 0.04  # s after the contact at which the object ball's direction is read
-# Banks and combinations (`indirect`), for the levels that look ahead: the best routes of
-# each, and the strokes tried on each (a bank's route comes with an aim per restitution).
+# Banks and combinations (`indirect`), for the levels that look ahead when few pots are on
+# (`FEW_POTS`): the best routes of each, and the strokes tried on each (a bank's route
+# comes with an aim per restitution).
 BANK_ROUTES, COMBOS = 2, 2
 BANK_SPEED_FACTORS = (1.25, 1.8, 2.6)
 COMBO_SPEED_FACTORS = (1.25, 1.8, 3.0)
@@ -411,7 +412,7 @@ class Search:
         out = []
         for option in options[:pairs]:
             out.extend(self._variants(option, needs_call, fine))
-        if self.level.lookahead:
+        if fine:  # few pots on: the banks and combinations may be the best of them
             out.extend(self.indirect_candidates(balls, needs_call))
         return out
 
