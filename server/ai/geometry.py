@@ -123,7 +123,7 @@ def _near_segment(ax: float, ay: float, bx: float, by: float, px: float, py: flo
 
 
 @njit(cache=True, inline="always")
-def _path_clear(
+def path_clear(
     ax: float,
     ay: float,
     bx: float,
@@ -145,14 +145,14 @@ def _path_clear(
 
 
 @njit(cache=True, inline="always")
-def _clean_window(mouth: float, cos_in: float, r: float, jaw: float) -> float:
+def clean_window(mouth: float, cos_in: float, r: float, jaw: float) -> float:
     """Half the lateral room a ball has to drop through a mouth of width `mouth` that it
     approaches at `cos_in` to the pocket's normal, widened by `jaw`."""
     return (mouth * min(max(cos_in, 0.0), 1.0) - 2 * r) / 2 + jaw
 
 
 @njit(cache=True, inline="always")
-def _chance(window: float, dist2: float, sigma_obj: float) -> float:
+def drop_chance(window: float, dist2: float, sigma_obj: float) -> float:
     """The chance a ball sent `dist2` to the pocket with an angle error of `sigma_obj`
     (normal, radians) stays within `window` of the mouth's centre."""
     return math.erf((window / dist2) / (sigma_obj * math.sqrt(2.0)))
@@ -203,7 +203,7 @@ def _pot_kernel(
             dist1 = max(math.sqrt(vx * vx + vy * vy), 1e-9)
             cc = (ux * vx + uy * vy) / dist1
             cos_in = ux * outward[p, 0] + uy * outward[p, 1]
-            window = _clean_window(mouths[p], cos_in, r, jaw) - side_cost * side[p]
+            window = clean_window(mouths[p], cos_in, r, jaw) - side_cost * side[p]
             d1[i, p], d2[i, p], cos_cut[i, p] = dist1, dist2, cc
             angle[i, p] = math.atan2(vy, vx)
             if cc <= min_cos or window <= 0.003 or cos_in <= 0.35:
@@ -211,15 +211,15 @@ def _pot_kernel(
             if gx < r or gx > length - r or gy < r or gy > width - r:
                 continue
             if not (
-                _path_clear(cue_x, cue_y, gx, gy, positions, on, cue_row, row, r)
-                and _path_clear(ox, oy, aims[p, 0], aims[p, 1], positions, on, cue_row, row, r)
+                path_clear(cue_x, cue_y, gx, gy, positions, on, cue_row, row, r)
+                and path_clear(ox, oy, aims[p, 0], aims[p, 1], positions, on, cue_row, row, r)
             ):
                 continue
             ok[i, p] = True
             s_aim = aim_scale * dist1 * sigma / (2 * r * max(cc, 0.05))
             s_cut = cut_sigma * math.sqrt(max(1.0 - cc * cc, 0.0))
             sigma_obj = math.sqrt(s_aim * s_aim + floor * floor + s_cut * s_cut)
-            chance[i, p] = _chance(window, dist2, sigma_obj)
+            chance[i, p] = drop_chance(window, dist2, sigma_obj)
     return ok, chance, angle, d1, d2, cos_cut
 
 
@@ -252,10 +252,10 @@ def _open_kernel(
             dist2 = max(math.sqrt(tx * tx + ty * ty), 1e-9)
             ux, uy = tx / dist2, ty / dist2
             cos_in = ux * outward[p, 0] + uy * outward[p, 1]
-            window = _clean_window(mouths[p], cos_in, r, GEOMETRIC_JAW)
+            window = clean_window(mouths[p], cos_in, r, GEOMETRIC_JAW)
             if cos_in <= 0.35 or window <= 0.003:
                 continue
-            if not _path_clear(ox, oy, aims[p, 0], aims[p, 1], positions, on, cue_row, row, r):
+            if not path_clear(ox, oy, aims[p, 0], aims[p, 1], positions, on, cue_row, row, r):
                 continue
             gx, gy = ox - 2 * r * ux, oy - 2 * r * uy
             for c in range(len(cuts)):
@@ -264,10 +264,10 @@ def _open_kernel(
                 cx, cy = gx - OPEN_REACH * vx, gy - OPEN_REACH * vy
                 if cx < r or cx > length - r or cy < r or cy > width - r:
                     continue
-                if not _path_clear(cx, cy, gx, gy, positions, on, cue_row, row, r):
+                if not path_clear(cx, cy, gx, gy, positions, on, cue_row, row, r):
                     continue
                 s_aim = OPEN_REACH * sigma / (2 * r * max(cos_c, 0.05))
-                best = max(best, _chance(window, dist2, s_aim))
+                best = max(best, drop_chance(window, dist2, s_aim))
         total += min(best / OPEN_EASY, 1.0)
     return total / len(rows)
 

@@ -15,7 +15,16 @@ import numpy as np
 
 from server.engine import CUE, BallSet, Table
 
-from .geometry import GEOMETRIC, MAX_CUT, ChanceModel, PotOption, pockets_of
+from .geometry import (
+    GEOMETRIC,
+    MAX_CUT,
+    ChanceModel,
+    PotOption,
+    clean_window,
+    drop_chance,
+    path_clear,
+    pockets_of,
+)
 
 # The cushion sends a ball back with its normal speed times about this (the engine's
 # e_cushion is 0.85; the friction of the nose and the spin move the rebound too), so a
@@ -29,19 +38,18 @@ MIN_COS_IN = 0.35  # the approach to a mouth must be at most about 70 degrees of
 
 
 def _clear(
-    positions: np.ndarray, on: np.ndarray, skip: set[int], a: np.ndarray, b: np.ndarray, r: float
+    positions: np.ndarray,
+    on: np.ndarray,
+    skip: tuple[int, int],
+    a: np.ndarray,
+    b: np.ndarray,
+    r: float,
 ) -> bool:
-    """Whether no ball on the table but the rows `skip` lies within a ball's width of the
-    path a->b."""
-    ab = b - a
-    length2 = max(float(ab @ ab), 1e-12)
-    for k in range(len(positions)):
-        if not on[k] or k in skip:
-            continue
-        t = min(max(float((positions[k] - a) @ ab) / length2, 0.0), 1.0)
-        if float(np.linalg.norm(positions[k] - (a + t * ab))) < 2 * r:
-            return False
-    return True
+    """Whether no ball on the table but the rows `skip` (the balls that travel the path)
+    lies within a ball's width of the path a->b (`geometry.path_clear`)."""
+    return bool(
+        path_clear(float(a[0]), float(a[1]), float(b[0]), float(b[1]), positions, on, *skip, r)
+    )
 
 
 def _sigma(model: ChanceModel, aim_error: float, cut: float, extra: float) -> float:
@@ -52,8 +60,8 @@ def _sigma(model: ChanceModel, aim_error: float, cut: float, extra: float) -> fl
 
 
 def _window(model: ChanceModel, mouth: float, cos_in: float, r: float, side: float) -> float:
-    """Half the room a ball has to drop through the mouth, as `geometry.pot_options` has it."""
-    return (mouth * min(max(cos_in, 0.0), 1.0) - 2 * r) / 2 + model.jaw - model.side * side
+    """The mouth's clean window under `model`, as `geometry.pot_options` has it."""
+    return float(clean_window(mouth, cos_in, r, model.jaw)) - model.side * side
 
 
 def _on_bed(table: Table, xy: np.ndarray) -> bool:
@@ -158,11 +166,10 @@ def _bank(
     cos_cut = float(to_ghost @ u) / d1
     if cos_cut <= math.cos(MAX_CUT):
         return None
-    skip = set(rows)
     if not (
-        _clear(positions, on, skip, cue, ghost, r)
-        and _clear(positions, on, skip, obj, bounce, r)
-        and _clear(positions, on, skip, bounce, aim, r)
+        _clear(positions, on, rows, cue, ghost, r)
+        and _clear(positions, on, rows, obj, bounce, r)
+        and _clear(positions, on, rows, bounce, aim, r)
     ):
         return None
     cut = math.acos(min(1.0, cos_cut))
@@ -173,7 +180,7 @@ def _bank(
         target=target,
         pocket=pocket,
         angle=math.atan2(to_ghost[1], to_ghost[0]),
-        chance=math.erf((window / d2) / (sigma * math.sqrt(2.0))),
+        chance=float(drop_chance(window, d2, sigma)),
         d1=d1,
         d2=d2,
         cut=cut,
@@ -220,7 +227,7 @@ def combo_options(
             window = _window(model, pk.mouths[p], cos_in, r, pk.side[p])
             if cos_in <= MIN_COS_IN or window <= 0.003:
                 continue
-            if not _clear(positions, on, {cue_row, row_b}, ball_b, pk.aims[p], r):
+            if not _clear(positions, on, (cue_row, row_b), ball_b, pk.aims[p], r):
                 continue
             ghost_b = ball_b - 2 * r * u_b
             for first in carriers:
@@ -237,7 +244,7 @@ def combo_options(
                 error_a = model.aim_scale * d1 * aim_sigma / (2 * r * max(math.cos(cut_a), 0.05))
                 aim_error = error_a * link / (2 * r * max(math.cos(cut_b), 0.05))
                 sigma = _sigma(model, aim_error / model.aim_scale, cut_b, 0.0)
-                chance = math.erf((window / d2) / (sigma * math.sqrt(2.0)))
+                chance = float(drop_chance(window, d2, sigma))
                 out.append(
                     PotOption(
                         target=second,
@@ -290,10 +297,11 @@ def _combo(
     cos_a = float(to_ghost @ u_a) / d1
     if cos_a <= math.cos(MAX_CUT):
         return None
-    skip = {cue_row, row_a, row_b}
+    # The second ball counts on the cue ball's way (hit first, it is not a combination);
+    # the cue ball does not on the first ball's (it has left its spot by then).
     if not (
-        _clear(positions, on, skip, cue, ghost_a, r)
-        and _clear(positions, on, skip, ball_a, ghost_b, r)
+        _clear(positions, on, (cue_row, row_a), cue, ghost_a, r)
+        and _clear(positions, on, (row_a, row_b), ball_a, ghost_b, r)
     ):
         return None
     return (
