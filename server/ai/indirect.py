@@ -37,6 +37,12 @@ MAX_LINK = 1.0  # m from the first ball to the second's ghost ball: longer is ho
 MIN_COS_IN = 0.35  # the approach to a mouth must be at most about 70 degrees off square
 
 
+def _rows(balls: BallSet) -> tuple[list[int], np.ndarray, np.ndarray, int]:
+    """(ball ids by row, positions, which are on the table, the cue ball's row)."""
+    ids = balls.ids.tolist()
+    return ids, balls.positions, balls.on_table, ids.index(CUE)
+
+
 def _clear(
     positions: np.ndarray,
     on: np.ndarray,
@@ -64,9 +70,24 @@ def _window(model: ChanceModel, mouth: float, cos_in: float, r: float, side: flo
     return float(clean_window(mouth, cos_in, r, model.jaw)) - model.side * side
 
 
-def _on_bed(table: Table, xy: np.ndarray) -> bool:
+def _approach(
+    table: Table, cue: np.ndarray, ball: np.ndarray, u: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, float, float] | None:
+    """(ghost ball, cue ball to ghost ball, its length, cos of the cut) for sending `ball`
+    along the unit vector `u`, or None when the ghost ball is off the bed or the cut is
+    too thin."""
     r = table.ball_radius
-    return bool(r <= xy[0] <= table.length - r and r <= xy[1] <= table.width - r)
+    ghost = ball - 2 * r * u
+    if not (r <= ghost[0] <= table.length - r and r <= ghost[1] <= table.width - r):
+        return None
+    to_ghost = ghost - cue
+    d1 = float(np.linalg.norm(to_ghost))
+    if d1 < 1e-6:
+        return None
+    cos_cut = float(to_ghost @ u) / d1
+    if cos_cut <= math.cos(MAX_CUT):
+        return None
+    return ghost, to_ghost, d1, cos_cut
 
 
 def bank_options(
@@ -86,10 +107,7 @@ def bank_options(
     steep."""
     r = table.ball_radius
     pk = pockets_of(table)
-    ids = balls.ids.tolist()
-    on = balls.on_table
-    positions = balls.positions
-    cue_row = ids.index(CUE)
+    ids, positions, on, cue_row = _rows(balls)
     if not on[cue_row]:
         return []
     # Each cushion as the line the ball's centre bounces on: (axis, coordinate).
@@ -156,16 +174,10 @@ def _bank(
     window = _window(model, pk.mouths[pocket], cos_in, r, pk.side[pocket])
     if cos_in <= MIN_COS_IN or window <= 0.003:
         return None
-    ghost = obj - 2 * r * u
-    if not _on_bed(table, ghost):
+    approach = _approach(table, cue, obj, u)
+    if approach is None:
         return None
-    to_ghost = ghost - cue
-    d1 = float(np.linalg.norm(to_ghost))
-    if d1 < 1e-6:
-        return None
-    cos_cut = float(to_ghost @ u) / d1
-    if cos_cut <= math.cos(MAX_CUT):
-        return None
+    ghost, to_ghost, d1, cos_cut = approach
     if not (
         _clear(positions, on, rows, cue, ghost, r)
         and _clear(positions, on, rows, obj, bounce, r)
@@ -203,10 +215,7 @@ def combo_options(
     The chance carries the first ball's angle error through the second collision."""
     r = table.ball_radius
     pk = pockets_of(table)
-    ids = balls.ids.tolist()
-    on = balls.on_table
-    positions = balls.positions
-    cue_row = ids.index(CUE)
+    ids, positions, on, cue_row = _rows(balls)
     if not on[cue_row]:
         return []
     cue = positions[cue_row]
@@ -287,16 +296,10 @@ def _combo(
     cos_b = float(u_a @ u_b)
     if cos_b <= math.cos(MAX_COMBO_CUT):
         return None
-    ghost_a = ball_a - 2 * r * u_a
-    if not _on_bed(table, ghost_a):
+    approach = _approach(table, cue, ball_a, u_a)
+    if approach is None:
         return None
-    to_ghost = ghost_a - cue
-    d1 = float(np.linalg.norm(to_ghost))
-    if d1 < 1e-6:
-        return None
-    cos_a = float(to_ghost @ u_a) / d1
-    if cos_a <= math.cos(MAX_CUT):
-        return None
+    ghost_a, to_ghost, d1, cos_a = approach
     # The second ball counts on the cue ball's way (hit first, it is not a combination);
     # the cue ball does not on the first ball's (it has left its spot by then).
     if not (

@@ -153,6 +153,30 @@ def departure(table: Table, balls: BallSet, shot: Shot, target: int) -> float | 
     return math.atan2(y - oy, x - ox)
 
 
+def _strokes(
+    option: PotOption,
+    needs_call: bool,
+    speeds: tuple[float, ...],
+    tips: tuple[tuple[float, float], ...],
+) -> list[Candidate]:
+    """A pot's strokes: each speed (times the speed that just reaches the pocket) with
+    each tip, the pocket called when the rules want a call."""
+    base = speed_for(option)
+    return [
+        Candidate(
+            aimed(option.angle, min(base * factor, 0.85 * MAX_SPEED), side, height),
+            option.pocket if needs_call else None,
+            "pot",
+            option.target,
+            option.pocket,
+            option.chance,
+            via=option.via,
+        )
+        for factor in speeds
+        for side, height in tips
+    ]
+
+
 @dataclass
 class Candidate:
     """A stroke being considered. value0: its score without noise; value: with noise."""
@@ -431,44 +455,18 @@ class Search:
         combos = combo_options(self.table, balls, targets, objects, sigma)[:COMBOS]
         out = []
         for option in chosen + combos:
-            base = speed_for(option)
-            fast = option.via == "bank"
-            factors = BANK_SPEED_FACTORS if fast else COMBO_SPEED_FACTORS
-            tips = TIPS[:1] if fast else TIPS[:2]
-            for factor in factors:
-                for side, height in tips:
-                    out.append(
-                        Candidate(
-                            aimed(option.angle, min(base * factor, 0.85 * MAX_SPEED), side, height),
-                            option.pocket if needs_call else None,
-                            "pot",
-                            option.target,
-                            option.pocket,
-                            option.chance,
-                            via=option.via,
-                        )
-                    )
+            if option.via == "bank":
+                out.extend(_strokes(option, needs_call, BANK_SPEED_FACTORS, TIPS[:1]))
+            else:
+                out.extend(_strokes(option, needs_call, COMBO_SPEED_FACTORS, TIPS[:2]))
         return out
 
     def _variants(self, option: PotOption, needs_call: bool, fine: bool) -> list[Candidate]:
         """The strokes tried on one pot: the level's speeds and tips, or the finer set."""
-        base = speed_for(option)
-        speeds = FINE_SPEED_FACTORS if fine else SPEED_FACTORS[: self.level.speeds]
-        tips = FINE_TIPS if fine else TIPS[: self.level.tips]
-        out = []
-        for factor in speeds:
-            for side, height in tips:
-                out.append(
-                    Candidate(
-                        aimed(option.angle, min(base * factor, 0.85 * MAX_SPEED), side, height),
-                        option.pocket if needs_call else None,
-                        "pot",
-                        option.target,
-                        option.pocket,
-                        option.chance,
-                    )
-                )
-        return out
+        if fine:
+            return _strokes(option, needs_call, FINE_SPEED_FACTORS, FINE_TIPS)
+        speeds, tips = SPEED_FACTORS[: self.level.speeds], TIPS[: self.level.tips]
+        return _strokes(option, needs_call, speeds, tips)
 
     def safety_candidates(self, balls: BallSet) -> list[Candidate]:
         """Hits on each legal ball, full to thin, soft to firm."""
