@@ -372,9 +372,8 @@ class Search:
     def allow_for_throw(self, balls: BallSet, cand: Candidate) -> None:
         """Turn a pot's aim for the throw (`aim_for_throw`); its simulations count against
         the budget."""
-        if cand.kind != "pot" or cand.via != "direct" or cand.target is None:
-            return
-        if cand.pocket is None:
+        direct = cand.kind == "pot" and cand.via == "direct"
+        if not direct or cand.target is None or cand.pocket is None:
             return
         cand.shot, used = aim_for_throw(self.table, balls, cand.shot, cand.target, cand.pocket)
         self.sims += used
