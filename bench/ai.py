@@ -39,9 +39,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from server.ai import LEVELS, Bot, Turn, play_turn
+from server.ai.aiming import clamp_shot
 from server.ai.bot import NormalSource
 from server.ai.geometry import ChanceModel, pot_options, speed_for
-from server.ai.search import clamp_shot
 from server.codec import to_data
 from server.engine import CUE, TICK_HZ, Shot
 from server.rooms.computer import plan_turn
@@ -374,8 +374,8 @@ def pot_rates(configs: int, seed: int) -> np.ndarray:
     each played `CALIBRATE_TRIALS` times with the top level's noise (centre ball, 1.8 or 2.4
     times the speed that just reaches, aimed for the throw as the computer aims): rows of
     (d1, d2, cut, side pocket, cos of the approach to the mouth, measured rate)."""
+    from server.ai.aiming import aim_for_throw, aimed, perturb
     from server.ai.geometry import pockets_of
-    from server.ai.search import aim_for_throw, aimed, perturb
     from server.engine import BallSet, Table, simulate
 
     table = Table.pool("9ft")

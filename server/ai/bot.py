@@ -18,9 +18,10 @@ from server.engine import CUE, BallSet, Shot
 from server.rules import BEHIND_HEAD_STRING, Game
 from server.rules.placement import can_place
 
+from .aiming import clamp_shot, perturb
 from .geometry import best_chance, pockets_of
 from .levels import BY_NAME, LEVELS, Level
-from .search import Candidate, Search, clamp_shot, perturb
+from .search import Candidate, Search
 
 BREAK_SPEEDS = (9.5, 11.5)
 BREAK_TIPS = ((0.0, -0.2),)

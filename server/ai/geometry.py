@@ -94,9 +94,11 @@ class PotOption:
     angle: the cue direction (radians from +x) at the ghost ball. chance: the geometric
     estimate of the pot under the aim sigma it was computed with. d1: cue to ghost ball,
     d2: object ball to pocket (m); cut: the cut angle (radians) on the ball the cue ball
-    hits. via: "direct", "bank" (d2 is then the path off the cushion) or "combo" (the cue
-    ball hits `carrier`, which travels `link` to hit `target` at a cut of `link_cut`;
-    `indirect`).
+    hits. via: "direct", "bank" (d2 is then the path off the cushion), "combo" (the cue
+    ball hits `carrier`, which travels `link` to hit `target` at a cut of `link_cut`) or
+    "carom" (`target` travels `link` to glance off `carrier`, its path turning by
+    `link_cut`; d2 is then from the kiss to the pocket); `indirect`. route: the aims of one
+    bank or carom route share it (each aimed for another rebound or roll).
     """
 
     target: int
@@ -110,6 +112,7 @@ class PotOption:
     carrier: int | None = None
     link: float = 0.0
     link_cut: float = 0.0
+    route: int = 0
 
 
 @njit(cache=True, inline="always")
@@ -384,11 +387,12 @@ def speed_for(option: PotOption, u_roll_g: float = 0.0981) -> float:
     The last factor is measured with the engine (the least speed that drops straight and
     cut pots): the object ball slides before it rolls, so a long one needs more than
     rolling friction alone says (x1.13 at 0.8 m, x1.3 at 1.5 m). A bank loses some of its
-    pace at the cushion; a combination's first ball must bring the second its speed."""
+    pace at the cushion; a combination's first ball must bring the second its speed, and a
+    carom's ball keeps only the share of its speed along the tangent of the kiss."""
     v_obj = math.sqrt(2 * u_roll_g * (option.d2 + 0.25))
     if option.via == "bank":
         v_obj /= 0.85  # the cushion takes some of it
-    if option.via == "combo":  # the first ball must carry the second's speed to it
+    if option.via in ("combo", "carom"):  # the first ball must carry the speed to the second
         v_obj = math.sqrt(
             (v_obj / max(math.cos(option.link_cut), 0.25) / 0.95) ** 2 + 2 * u_roll_g * option.link
         )

@@ -1,5 +1,6 @@
 """Pots that do not go straight from the object ball to the pocket: banks (the object ball
-off one cushion) and combinations (the cue ball sends one ball into another, which drops).
+off one cushion), combinations (the cue ball sends one ball into another, which drops) and
+caroms (the object ball glances off another ball into the pocket).
 
 Geometry only, like `geometry.pot_options`: where to aim, whether the paths are clear and a
 rough chance to rank them by; the search simulates each with the engine, so the cushion's
@@ -35,6 +36,15 @@ BANK_CLEAR_OF_POCKET = 0.12  # m: a bounce this near a pocket's mouth meets the 
 MAX_COMBO_CUT = math.radians(50.0)  # thinner cuts of the second ball are not tried
 MAX_LINK = 1.0  # m from the first ball to the second's ghost ball: longer is hopeless
 MIN_COS_IN = 0.35  # the approach to a mouth must be at most about 70 degrees off square
+# A carom's ball leaves the kiss along the tangent line when it slides and bends forward
+# when it rolls (its path ends along 5 * tangent + 2 * share * incoming). A struck ball
+# slides at first and rolls after about 12 v^2 / (49 mu g): 0.28 m at 1.5 m/s on the
+# engine's cloth (mu 0.2), so the share is taken as the distance to the kiss over that.
+CAROM_ROLL_DISTANCE = 0.28
+MIN_KISS_CUT = math.radians(20.0)  # fuller, the ball stops on the kiss
+MAX_KISS_CUT = math.radians(72.0)  # thinner, the smallest error turns it off the line
+MAX_CAROM_LINK = 0.3  # m from the ball to the kiss
+KISS_STEPS = 720  # contact points tried round the kissed ball before refining
 
 
 def _rows(balls: BallSet) -> tuple[list[int], np.ndarray, np.ndarray, int]:
@@ -101,7 +111,7 @@ def bank_options(
     """One-cushion banks of the balls `targets`, best chance first: for each pocket and
     each cushion it is not on, the bounce point where a ball leaving the cushion with its
     normal speed times e (each of `restitutions`) runs into the pocket (the aims of one
-    route share its best chance, so they come out together). Rejected when a
+    route share its `route` and its best chance, so they come out together). Rejected when a
     path (cue ball to ghost ball, object ball to cushion, cushion to pocket) is blocked,
     the bounce is near a pocket, the cut is too thin or the approach to the mouth too
     steep."""
@@ -125,7 +135,7 @@ def bank_options(
                 if h1 < 2 * r or h2 < 0.1:  # frozen on it, or the pocket is on this cushion
                     continue
                 along = 1 - axis
-                route: list[PotOption] = []
+                aims: list[PotOption] = []
                 for e in restitutions:
                     # The bounce point: tangential travel shares the run in the ratio of
                     # h1 to h2 / e (the normal speed leaves at e times what it came in at).
@@ -139,10 +149,11 @@ def bank_options(
                         table, positions, on, (cue_row, row), bounce, p, target, aim_sigma, model
                     )
                     if option is not None:
-                        route.append(option)
+                        aims.append(option)
                 # One chance for the route, so that its aims stay together when sorted.
-                best = max((o.chance for o in route), default=0.0)
-                out.extend(replace(o, chance=best) for o in route)
+                best = max((o.chance for o in aims), default=0.0)
+                route = len(out)
+                out.extend(replace(o, chance=best, route=route) for o in aims)
     out.sort(key=lambda o: -o.chance)
     return out
 
@@ -313,4 +324,132 @@ def _combo(
         math.acos(min(1.0, cos_a)),
         math.acos(min(1.0, cos_b)),
         math.atan2(to_ghost[1], to_ghost[0]),
+    )
+
+
+def carom_options(
+    table: Table,
+    balls: BallSet,
+    targets: list[int],
+    aim_sigma: float,
+    model: ChanceModel = GEOMETRIC,
+) -> list[PotOption]:
+    """Caroms, best chance first: the cue ball sends a ball of `targets` into another ball
+    (any but the cue ball), off which it glances into a pocket. For each kissed ball,
+    pocket and side, the contact from which the ball's path after the kiss runs into the
+    pocket (`CAROM_ROLL_DISTANCE`; the search then lets the engine correct the aim:
+    `aiming.aim_carom`). Rejected when a path is blocked, the kiss is too full or
+    too thin, the ball is more than `MAX_CAROM_LINK` from it or the approach to the mouth
+    is too steep. The chance carries the ball's angle error through the kiss, as for a
+    combination."""
+    r = table.ball_radius
+    pk = pockets_of(table)
+    ids, positions, on, cue_row = _rows(balls)
+    if not on[cue_row]:
+        return []
+    present = {b: ids.index(b) for b in ids if b != CUE and on[ids.index(b)]}
+    out: list[PotOption] = []
+    for target in targets:
+        if target not in present:
+            continue
+        row = present[target]
+        for kiss, row_k in present.items():
+            gap = float(np.linalg.norm(positions[row_k] - positions[row]))
+            if kiss == target or gap < 2.2 * r or gap > MAX_CAROM_LINK + 2 * r:
+                continue
+            roll = min(1.0, (gap - 2 * r) / CAROM_ROLL_DISTANCE)
+            for p in range(len(pk.aims)):
+                for contact in _kiss_points(positions[row], positions[row_k], pk.aims[p], r, roll):
+                    rows = (cue_row, row, row_k)
+                    option = _carom(table, positions, on, rows, contact, p, aim_sigma, model)
+                    if option is not None:
+                        out.append(replace(option, target=target, carrier=kiss))
+    out.sort(key=lambda o: -o.chance)
+    return out
+
+
+def _kiss_points(
+    ball: np.ndarray, kiss: np.ndarray, aim: np.ndarray, r: float, roll: float
+) -> list[np.ndarray]:
+    """The ball's centre at the kiss for each way `ball` can glance off `kiss` into `aim`
+    with rolling share `roll`: the zeros, round the kissed ball, of the angle between the
+    path after the kiss and the line to the pocket."""
+    alpha = np.linspace(-math.pi, math.pi, KISS_STEPS, endpoint=False)
+    out = (np.cos(alpha), np.sin(alpha))
+    contacts = kiss + 2 * r * np.stack(out, axis=1)
+    incoming = contacts - ball
+    incoming /= np.linalg.norm(incoming, axis=1)[:, None]
+    normal = -np.stack(out, axis=1)  # from the contact to the kissed ball's centre
+    cos_kiss = (incoming * normal).sum(axis=1)
+    leaves = 5 * (incoming - cos_kiss[:, None] * normal) + 2 * roll * incoming
+    to_aim = aim - contacts
+    miss = leaves[:, 0] * to_aim[:, 1] - leaves[:, 1] * to_aim[:, 0]
+    ok = (
+        (cos_kiss > math.cos(MAX_KISS_CUT))
+        & (cos_kiss < math.cos(MIN_KISS_CUT))
+        & ((leaves * to_aim).sum(axis=1) > 0)
+    )
+    nxt = np.roll(np.arange(KISS_STEPS), -1)
+    found = []
+    for i in np.nonzero(ok & ok[nxt] & (np.sign(miss) != np.sign(miss[nxt])))[0]:
+        j = nxt[i]
+        share = miss[i] / (miss[i] - miss[j])
+        a = alpha[i] + share * (2 * math.pi / KISS_STEPS)
+        found.append(kiss + 2 * r * np.array([math.cos(a), math.sin(a)]))
+    return found
+
+
+def _carom(
+    table: Table,
+    positions: np.ndarray,
+    on: np.ndarray,
+    rows: tuple[int, int, int],
+    contact: np.ndarray,
+    pocket: int,
+    aim_sigma: float,
+    model: ChanceModel,
+) -> PotOption | None:
+    """The carom of the ball in row `rows[1]` off the ball in row `rows[2]`, its centre at
+    `contact` at the kiss (the cue ball in row `rows[0]`), or None when it cannot be
+    played; `target` and `carrier` are left for the caller to set."""
+    r = table.ball_radius
+    pk = pockets_of(table)
+    cue, ball, kiss = positions[rows[0]], positions[rows[1]], positions[rows[2]]
+    aim = pk.aims[pocket]
+    to_kiss, to_pocket = contact - ball, aim - contact
+    link, d2 = float(np.linalg.norm(to_kiss)), float(np.linalg.norm(to_pocket))
+    if link < 1e-3 or link > MAX_CAROM_LINK or d2 < 1e-6:
+        return None
+    u = to_kiss / link
+    cos_kiss = float(u @ (kiss - contact)) / (2 * r)
+    cos_in = float(to_pocket @ pk.outward[pocket]) / d2
+    window = _window(model, pk.mouths[pocket], cos_in, r, pk.side[pocket])
+    if cos_in <= MIN_COS_IN or window <= 0.003:
+        return None
+    approach = _approach(table, cue, ball, u)
+    if approach is None:
+        return None
+    ghost, to_ghost, d1, cos_cut = approach
+    if not (
+        _clear(positions, on, rows[:2], cue, ghost, r)
+        and _clear(positions, on, rows[1:], ball, contact, r)
+        and _clear(positions, on, rows[1:], contact, aim, r)
+    ):
+        return None
+    # The ball's angle error moves the kiss's contact: the path after it turns by the
+    # offset over a ball's width times the cosine of the kiss's cut.
+    error = d1 * aim_sigma / (2 * r * max(cos_cut, 0.05))
+    kiss_cut = math.acos(min(1.0, cos_kiss))
+    aim_error = error * link / (2 * r * max(cos_kiss, 0.05))
+    return PotOption(
+        target=-1,
+        pocket=pocket,
+        angle=math.atan2(to_ghost[1], to_ghost[0]),
+        chance=float(drop_chance(window, d2, _sigma(model, aim_error, kiss_cut, 0.0))),
+        d1=d1,
+        d2=d2,
+        cut=math.acos(min(1.0, cos_cut)),
+        via="carom",
+        link=link,
+        link_cut=math.pi / 2 - kiss_cut,
     )

@@ -15,23 +15,23 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from server.engine import CUE, MAX_SPEED, MAX_TIP, BallSet, Shot, Table, simulate
+from server.engine import CUE, MAX_SPEED, BallSet, Shot, Table, simulate
 from server.rules.kinds import GameRules
 from server.rules.position import Position
 from server.rules.ruling import Ruling
 from server.rules.shotfacts import shot_facts
 from server.rules.spotting import respot
 
+from .aiming import aim_carom, aim_for_throw, aimed, clamp_shot, perturb
 from .geometry import (
     MIN_AIM_SIGMA,
     PotOption,
     best_chance,
     open_share,
-    pockets_of,
     pot_options,
     speed_for,
 )
-from .indirect import bank_options, combo_options
+from .indirect import bank_options, carom_options, combo_options
 from .levels import Level
 
 WIN, LOSS = 1.0, -1.0
@@ -63,94 +63,13 @@ KICK_SPEEDS = (1.5, 2.6, 4.0)
 KICK_OFFSETS = (-2.0, -0.8, 0.0, 0.8, 2.0)  # degrees off the mirror-image line
 SWEEP_SPEEDS = (1.6, 3.2)
 SWEEP_ANGLES = 40
-THROW_STEP = math.radians(0.05)  # the aim step of the secant that allows for the throw
-THROW_MAX = math.radians(1.0)  # larger corrections are not trusted (a kiss, a near miss)
-THROW_LOOK = 0.04  # s after the contact at which the object ball's direction is read
 # Banks and combinations (`indirect`), for the levels that look ahead when few pots are on
 # (`FEW_POTS`): the best routes of each, and the strokes tried on each (a bank's route
 # comes with an aim per restitution).
-BANK_ROUTES, COMBOS = 2, 2
+BANK_ROUTES, COMBOS, CAROMS = 2, 2, 2
 BANK_SPEED_FACTORS = (1.25, 1.8, 2.6)
 COMBO_SPEED_FACTORS = (1.25, 1.8, 3.0)
-
-
-def clamp_shot(angle: float, speed: float, side: float, height: float) -> Shot:
-    """A valid `Shot` near the given values: speed within (0, MAX_SPEED], tip within MAX_TIP."""
-    speed = min(max(speed, 0.05), MAX_SPEED)
-    norm = math.hypot(side, height)
-    if norm > MAX_TIP:
-        k = MAX_TIP / norm * (1 - 1e-9)
-        side, height = side * k, height * k
-    return Shot(math.remainder(angle, 2 * math.pi), speed, (side, height))
-
-
-def aimed(angle: float, speed: float, side: float, height: float) -> Shot:
-    """A stroke whose cue ball leaves along `angle`: the aim turned against the squirt of
-    its side spin (the ghost-ball line is where the cue ball must go, not the cue)."""
-    shot = clamp_shot(angle, speed, side, height)
-    return clamp_shot(angle - shot.squirt(), shot.speed, *shot.tip)
-
-
-def perturb(shot: Shot, noise: np.ndarray, level: Level) -> Shot:
-    """`shot` with standard-normal errors `noise` (aim, speed, side, height) at `level`."""
-    side, height = shot.tip
-    return clamp_shot(
-        shot.angle + float(noise[0]) * level.aim,
-        shot.speed + float(noise[1]) * level.speed,
-        side + float(noise[2]) * level.tip,
-        height + float(noise[3]) * level.tip,
-    )
-
-
-def aim_for_throw(
-    table: Table, balls: BallSet, shot: Shot, target: int, pocket: int
-) -> tuple[Shot, int]:
-    """`shot` with its aim turned so that the exact stroke sends `target` at the centre of
-    `pocket`, and the simulations that took. The ghost-ball line ignores the throw of the
-    collision (the friction between the balls turns the object ball 1-3 degrees towards
-    the cue ball's path on a slow cut, in the engine as on a real table); under the pro's
-    aim error that alone missed a 30-degree cut of 0.8 m a third of the time
-    (docs/ai.md). A secant of two engine shots finds the aim; speed and tip stay."""
-    ox, oy = balls.position_of(target)
-    ax, ay = pockets_of(table).aims[pocket]
-    want = math.atan2(ay - oy, ax - ox)
-    first = departure(table, balls, shot, target)
-    if first is None:
-        return shot, 1
-    nudged = clamp_shot(shot.angle + THROW_STEP, shot.speed, *shot.tip)
-    second = departure(table, balls, nudged, target)
-    if second is None:
-        return shot, 2
-    err = math.remainder(first - want, 2 * math.pi)
-    slope = math.remainder(second - first, 2 * math.pi) / THROW_STEP
-    if abs(slope) < 1.0:  # the object ball hardly follows the aim: not a clean hit
-        return shot, 2
-    step = -err / slope
-    if abs(step) > THROW_MAX:
-        return shot, 2
-    return clamp_shot(shot.angle + step, shot.speed, *shot.tip), 2
-
-
-def departure(table: Table, balls: BallSet, shot: Shot, target: int) -> float | None:
-    """The direction `target` leaves in when `shot` hits it first (from the engine's
-    frames, so with the throw), or None when it is not the first ball hit or is stopped
-    at once."""
-    result = simulate(table, balls, shot)
-    contact = next((e for e in result.events if e.kind == "ball"), None)
-    if contact is None or set(contact.ids) != {CUE, target}:
-        return None
-    later = [e.time for e in result.events if e.time > contact.time and target in e.ids]
-    until = min([*later, contact.time + THROW_LOOK])
-    frames = result.frames
-    k = min(int(until / frames.tick) - 1, len(frames) - 1)
-    if k < 0 or (k + 1) * frames.tick <= contact.time:
-        return None
-    row = result.final.index(target)  # the rows of the frames are those of the set
-    x, y = frames.positions[k, row]
-    ox, oy = balls.position_of(target)
-    if math.hypot(x - ox, y - oy) < 1e-3:
-        return None
-    return math.atan2(y - oy, x - ox)
+CAROM_SPEED_FACTORS = (1.25, 1.8, 2.6)
 
 
 def _strokes(
@@ -440,24 +359,31 @@ class Search:
         return out
 
     def indirect_candidates(self, balls: BallSet, needs_call: bool) -> list[Candidate]:
-        """The best banks and combinations, a few strokes each (centre ball, and follow
-        for a combination); the simulations judge them like any pot. In 9-ball the
+        """The best banks, combinations and caroms, a few strokes each (centre ball, and
+        follow for a combination); the simulations judge them like any pot. In 9-ball the
         combination may drop any ball (the lowest is hit first), in 8-ball only the
-        shooter's own."""
+        shooter's own. A carom's aim is corrected with the engine (`aim_carom`), whose
+        simulations count against the budget."""
         targets = self.targets(self.pos)
         sigma = self.plan_sigma()
         banks = bank_options(self.table, balls, targets, sigma)
-        routes = sorted({(o.target, o.pocket, o.chance) for o in banks}, key=lambda k: -k[2])
-        keep = set(routes[:BANK_ROUTES])
-        chosen = [o for o in banks if (o.target, o.pocket, o.chance) in keep]
+        # Banks come best first, the aims of a route together.
+        routes = set(list(dict.fromkeys(o.route for o in banks))[:BANK_ROUTES])
         objects = self.pos.object_balls if self.rules.kind == "nine_ball" else targets
         combos = combo_options(self.table, balls, targets, objects, sigma)[:COMBOS]
         out = []
-        for option in chosen + combos:
+        for option in [o for o in banks if o.route in routes] + combos:
             if option.via == "bank":
                 out.extend(_strokes(option, needs_call, BANK_SPEED_FACTORS, TIPS[:1]))
             else:
                 out.extend(_strokes(option, needs_call, COMBO_SPEED_FACTORS, TIPS[:2]))
+        for option in carom_options(self.table, balls, targets, sigma)[:CAROMS]:
+            for cand in _strokes(option, needs_call, CAROM_SPEED_FACTORS, TIPS[:1]):
+                cand.shot, used = aim_carom(
+                    self.table, balls, cand.shot, option.target, option.pocket
+                )
+                self.sims += used
+                out.append(cand)
         return out
 
     def _variants(self, option: PotOption, needs_call: bool, fine: bool) -> list[Candidate]:

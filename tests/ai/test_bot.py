@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from server.ai import LEVELS, Bot, Turn, play_turn
+from server.ai.aiming import departure, perturb
 from server.ai.geometry import pot_options
 from server.ai.levels import BY_NAME
 from server.ai.search import (
@@ -16,8 +17,6 @@ from server.ai.search import (
     FINE_TIPS,
     Candidate,
     Search,
-    departure,
-    perturb,
 )
 from server.codec import to_data
 from server.engine import CUE, MAX_SPEED, MAX_TIP, Shot, simulate

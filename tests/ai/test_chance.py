@@ -6,8 +6,9 @@ from __future__ import annotations
 import math
 
 from server.ai import Bot
+from server.ai.aiming import aimed
 from server.ai.geometry import FASTFIZ, GEOMETRIC, MIN_AIM_SIGMA, pot_options, speed_for
-from server.ai.search import SPEED_FACTORS, aimed
+from server.ai.search import SPEED_FACTORS
 from server.engine import BallSet, simulate
 
 from .conftest import TABLE, straight_line

@@ -1,12 +1,14 @@
-"""Banks and combinations: found by geometry, judged by the engine, played when nothing goes
-straight in (or when a combination wins the game)."""
+"""Banks, combinations and caroms: found by geometry, judged by the engine, played when
+nothing goes straight in (or when a combination wins the game)."""
 
 from __future__ import annotations
 
 import math
 
 from server.ai import Bot, play_turn
-from server.ai.indirect import bank_options, combo_options
+from server.ai.aiming import aim_carom, aimed, kiss_miss
+from server.ai.geometry import pot_options, speed_for
+from server.ai.indirect import bank_options, carom_options, combo_options
 from server.engine import simulate
 from server.rules import Game
 
@@ -74,4 +76,65 @@ def test_a_combination_needs_a_clear_way_between_the_balls(nine: Game) -> None:
     cue, one, nine_ball = _diagonal(1.1, 0.7, 0.3)
     between = _diagonal(0.5)[0]
     game = set_table(nine, {0: cue, 1: one, 9: nine_ball, 5: between})
-    assert not [o for o in combo_options(TABLE, game.balls, [1], [9], SIGMA) if o.pocket == 3]
+    assert not [o for o in combo_options(TABLE, game.balls, [1], [9], SIGMA) if o.pocket == 0]
+
+
+# The 1 with the 10 just to its left: the stripes and the 9 shut or thin its straight pots
+# from the cue ball to its right, but the 1 glances off the 10 into the bottom left
+# pocket (0).
+CAROM_TABLE = {
+    0: (0.591, 0.409),
+    1: (0.493, 0.433),
+    9: (0.455, 0.206),
+    10: (0.364, 0.461),
+    11: (0.689, 0.763),
+    12: (0.422, 0.064),
+    13: (0.07, 0.528),
+    8: (0.114, 0.317),
+}
+
+
+def test_a_carom_route_is_found_and_a_ball_on_its_way_shuts_it(eight: Game) -> None:
+    game = set_table(eight, CAROM_TABLE, groups=SOLIDS_STRIPES)
+    assert not pot_options(TABLE, game.balls, [1], SIGMA)
+    caroms = carom_options(TABLE, game.balls, [1], SIGMA)
+    assert caroms[0].via == "carom" and caroms[0].target == 1 and caroms[0].carrier == 10
+    assert caroms[0].pocket == 0
+    # A stripe halfway from the 1 to the pocket shuts the route.
+    (x, y), (px, py) = CAROM_TABLE[1], pocket_aim(0)
+    blocker = {**CAROM_TABLE, 14: ((x + px) / 2, (y + py) / 2)}
+    blocked = set_table(
+        Game.new("eight_ball", ["ana", "bot"], seed=3), blocker, groups=SOLIDS_STRIPES
+    )
+    assert not [o for o in carom_options(TABLE, blocked.balls, [1], SIGMA) if o.pocket == 0]
+
+
+def test_the_engine_corrects_a_caroms_aim(eight: Game) -> None:
+    # The 1 travels 0.15 m to glance off the 9 into the bottom side pocket (1): it rolls
+    # part of the way and the kiss throws it, so the geometry's aim is degrees off.
+    table = {0: (1.927, 0.906), 1: (1.838, 0.644), 9: (1.811, 0.462)}
+    game = set_table(eight, table, groups=SOLIDS_STRIPES)
+    option = carom_options(TABLE, game.balls, [1], SIGMA)[0]
+    assert option.pocket == 1 and option.carrier == 9
+    shot = aimed(option.angle, 1.8 * speed_for(option), 0.0, 0.0)
+    before = kiss_miss(TABLE, game.balls, shot, 1, option.pocket)
+    corrected, used = aim_carom(TABLE, game.balls, shot, 1, option.pocket)
+    after = kiss_miss(TABLE, game.balls, corrected, 1, option.pocket)
+    assert before is not None and after is not None and 2 <= used <= 5
+    assert abs(before) > math.radians(2.0) and abs(after) < math.radians(0.5)
+    assert (corrected.speed, corrected.tip) == (shot.speed, shot.tip)
+    pocketed = simulate(TABLE, game.balls, corrected).final
+    assert not pocketed.on_table[pocketed.index(1)]
+
+
+def test_with_only_a_carom_on_the_pro_plays_it_and_the_exact_stroke_drops(eight: Game) -> None:
+    game = set_table(eight, CAROM_TABLE, groups=SOLIDS_STRIPES)
+    turn = Bot("pro").plan(game, 0)
+    assert turn.kind == "pot" and turn.via == "carom" and turn.target == 1, turn
+    assert turn.shot is not None
+    events = [e for e in simulate(TABLE, game.balls, turn.shot).events if 1 in e.ids]
+    assert [set(e.ids) for e in events[:2]] == [{0, 1}, {1, 10}]  # the cue ball, then the kiss
+    assert events[-1].kind == "pocket"
+    outcome, _ = play_turn(game, 0, turn)
+    assert outcome is not None and 1 in outcome.pocketed and outcome.continues
+    assert not outcome.fouls

@@ -1,0 +1,168 @@
+"""Strokes and their aims: a valid `Shot` near the wanted values, aimed against the squirt
+of its side spin, perturbed by a level's execution error, and aims the engine corrects
+(the throw of a cut; the path of a carom after its kiss), which the ghost-ball geometry
+does not see.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from server.engine import CUE, MAX_SPEED, MAX_TIP, BallSet, Shot, Table, simulate
+
+from .geometry import pockets_of
+from .levels import Level
+
+THROW_STEP = math.radians(0.05)  # the aim step of the secant that allows for the throw
+THROW_MAX = math.radians(1.0)  # larger corrections are not trusted (a kiss, a near miss)
+THROW_LOOK = 0.04  # s after the contact at which the object ball's direction is read
+CAROM_NUDGE = math.radians(0.02)  # the first step of the secant on a carom's aim
+CAROM_STEPS = 4  # engine shots of the secant at most
+CAROM_MAX = math.radians(0.5)  # larger corrections of a carom are not trusted
+CAROM_DONE = math.radians(0.2)  # a path this close to the pocket's aim needs no more
+
+
+def clamp_shot(angle: float, speed: float, side: float, height: float) -> Shot:
+    """A valid `Shot` near the given values: speed within (0, MAX_SPEED], tip within MAX_TIP."""
+    speed = min(max(speed, 0.05), MAX_SPEED)
+    norm = math.hypot(side, height)
+    if norm > MAX_TIP:
+        k = MAX_TIP / norm * (1 - 1e-9)
+        side, height = side * k, height * k
+    return Shot(math.remainder(angle, 2 * math.pi), speed, (side, height))
+
+
+def aimed(angle: float, speed: float, side: float, height: float) -> Shot:
+    """A stroke whose cue ball leaves along `angle`: the aim turned against the squirt of
+    its side spin (the ghost-ball line is where the cue ball must go, not the cue)."""
+    shot = clamp_shot(angle, speed, side, height)
+    return clamp_shot(angle - shot.squirt(), shot.speed, *shot.tip)
+
+
+def perturb(shot: Shot, noise: np.ndarray, level: Level) -> Shot:
+    """`shot` with standard-normal errors `noise` (aim, speed, side, height) at `level`."""
+    side, height = shot.tip
+    return clamp_shot(
+        shot.angle + float(noise[0]) * level.aim,
+        shot.speed + float(noise[1]) * level.speed,
+        side + float(noise[2]) * level.tip,
+        height + float(noise[3]) * level.tip,
+    )
+
+
+def aim_for_throw(
+    table: Table, balls: BallSet, shot: Shot, target: int, pocket: int
+) -> tuple[Shot, int]:
+    """`shot` with its aim turned so that the exact stroke sends `target` at the centre of
+    `pocket`, and the simulations that took. The ghost-ball line ignores the throw of the
+    collision (the friction between the balls turns the object ball 1-3 degrees towards
+    the cue ball's path on a slow cut, in the engine as on a real table); under the pro's
+    aim error that alone missed a 30-degree cut of 0.8 m a third of the time
+    (docs/ai.md). A secant of two engine shots finds the aim; speed and tip stay."""
+    ox, oy = balls.position_of(target)
+    ax, ay = pockets_of(table).aims[pocket]
+    want = math.atan2(ay - oy, ax - ox)
+    first = departure(table, balls, shot, target)
+    if first is None:
+        return shot, 1
+    nudged = clamp_shot(shot.angle + THROW_STEP, shot.speed, *shot.tip)
+    second = departure(table, balls, nudged, target)
+    if second is None:
+        return shot, 2
+    err = math.remainder(first - want, 2 * math.pi)
+    slope = math.remainder(second - first, 2 * math.pi) / THROW_STEP
+    if abs(slope) < 1.0:  # the object ball hardly follows the aim: not a clean hit
+        return shot, 2
+    step = -err / slope
+    if abs(step) > THROW_MAX:
+        return shot, 2
+    return clamp_shot(shot.angle + step, shot.speed, *shot.tip), 2
+
+
+def departure(table: Table, balls: BallSet, shot: Shot, target: int) -> float | None:
+    """The direction `target` leaves in when `shot` hits it first (from the engine's
+    frames, so with the throw), or None when it is not the first ball hit or is stopped
+    at once."""
+    result = simulate(table, balls, shot)
+    contact = next((e for e in result.events if e.kind == "ball"), None)
+    if contact is None or set(contact.ids) != {CUE, target}:
+        return None
+    later = [e.time for e in result.events if e.time > contact.time and target in e.ids]
+    until = min([*later, contact.time + THROW_LOOK])
+    frames = result.frames
+    k = min(int(until / frames.tick) - 1, len(frames) - 1)
+    if k < 0 or (k + 1) * frames.tick <= contact.time:
+        return None
+    row = result.final.index(target)  # the rows of the frames are those of the set
+    x, y = frames.positions[k, row]
+    ox, oy = balls.position_of(target)
+    if math.hypot(x - ox, y - oy) < 1e-3:
+        return None
+    return math.atan2(y - oy, x - ox)
+
+
+def aim_carom(
+    table: Table, balls: BallSet, shot: Shot, target: int, pocket: int
+) -> tuple[Shot, int]:
+    """`shot` with its aim turned so that the exact stroke's carom sends `target` at the
+    centre of `pocket`, and the simulations that took. After the kiss the ball bends
+    forward as it rolls, by an amount that depends on the speed and the distance, and the
+    kiss throws it: the geometry's aim missed most caroms without noise. A secant on
+    where the ball goes after the kiss (`kiss_miss`), `CAROM_STEPS` steps at most; speed
+    and tip stay, and the aim that missed least is kept."""
+    first = kiss_miss(table, balls, shot, target, pocket)
+    if first is None:
+        return shot, 1
+    best, best_miss, used = shot, abs(first), 1
+    a0, m0 = shot.angle, first
+    a1 = shot.angle + CAROM_NUDGE
+    for _ in range(CAROM_STEPS):
+        if abs(math.remainder(a1 - shot.angle, 2 * math.pi)) > CAROM_MAX:
+            break
+        trial = clamp_shot(a1, shot.speed, *shot.tip)
+        m1 = kiss_miss(table, balls, trial, target, pocket)
+        used += 1
+        if m1 is None:
+            break
+        if abs(m1) < best_miss:
+            best, best_miss = trial, abs(m1)
+        if abs(m1) < CAROM_DONE or m1 == m0:
+            break
+        a0, m0, a1 = a1, m1, a1 - m1 * (a1 - a0) / (m1 - m0)
+    return best, used
+
+
+def kiss_miss(table: Table, balls: BallSet, shot: Shot, target: int, pocket: int) -> float | None:
+    """How far (radians, seen from where `target` kissed another ball) its path misses
+    `pocket`'s aim point: where it is when it has come as far as the pocket, or when it
+    next meets anything. None when the cue ball does not hit `target` first or `target`
+    meets something else before its kiss."""
+    result = simulate(table, balls, shot)
+    events = result.events
+    hit = next((k for k, e in enumerate(events) if e.kind == "ball"), None)
+    if hit is None or set(events[hit].ids) != {CUE, target}:
+        return None
+    mine = [e for e in events[hit + 1 :] if target in e.ids]
+    if not mine or mine[0].kind != "ball" or CUE in mine[0].ids:
+        return None
+    frames = result.frames
+    row = result.final.index(target)  # the rows of the frames are those of the set
+    start = min(max(int(mine[0].time / frames.tick), 0), len(frames) - 1)
+    end = len(frames) - 1
+    if len(mine) > 1:
+        end = min(max(int(mine[1].time / frames.tick) - 1, start), end)
+    path = frames.positions[start : end + 1, row]
+    origin = path[0]
+    aim = pockets_of(table).aims[pocket]
+    reach = float(np.hypot(*(aim - origin)))
+    far = np.nonzero(np.hypot(*(path - origin).T) >= reach)[0]
+    x, y = path[far[0]] if len(far) else path[-1]
+    if math.hypot(x - origin[0], y - origin[1]) < 1e-3:
+        return None
+    return math.remainder(
+        math.atan2(y - origin[1], x - origin[0])
+        - math.atan2(aim[1] - origin[1], aim[0] - origin[0]),
+        2 * math.pi,
+    )
