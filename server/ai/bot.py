@@ -44,9 +44,9 @@ class Turn:
     (ball in hand). call: the pocket called for the 8 (`game.requires_call`). shot: the
     stroke it intends (the room applies `Bot.execute` to it). target / pocket / chance /
     kind / via: what it is trying (for hints and logs): kind is "pot", "safety", "kick",
-    "break" or "push"; a pot's via is "direct", "bank" (off a cushion) or "combo" (the cue
-    ball hits another ball into `target`); chance is the share of its noisy trials that
-    pocketed a ball legally.
+    "break" or "push"; a pot's via is "direct", "bank" (off a cushion), "combo" (the cue
+    ball hits another ball into `target`) or "carom" (`target` glances off another ball
+    into the pocket); chance is the share of its noisy trials that pocketed a ball legally.
     """
 
     decision: str | None = None

@@ -106,7 +106,7 @@ class Candidate:
     target: int | None = None
     pocket: int | None = None
     prior: float = 0.0
-    via: str = "direct"  # a pot's route: "direct", "bank" or "combo" (`PotOption.via`)
+    via: str = "direct"  # a pot's route: "direct", "bank", "combo" or "carom" (`PotOption.via`)
     value0: float = -math.inf
     value: float = -math.inf
     pot_rate: float = 0.0

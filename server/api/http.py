@@ -227,7 +227,7 @@ class Hint(BaseModel):
     target: int | None  # the ball it pots (or plays at)
     pocket: int | None  # the pocket it plays for
     chance: float | None  # the share of its noisy trials that pocketed a ball legally
-    via: str | None = None  # a pot's route: "direct", "bank" (off a cushion) or "combo"
+    via: str | None = None  # a pot's route: "direct", "bank" (off a cushion), "combo", "carom"
 
 
 _HINT_STATUS = {"bad_token": 403, "not_practice": 409, "not_your_turn": 409, "hint_pending": 429}

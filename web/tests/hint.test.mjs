@@ -37,4 +37,6 @@ test('the caption says what the plan is, its odds for a pot, its speed and spin'
     'Bank the 3 off a cushion (40 % of the computer\'s trials went in): 2.3 m/s, draw.');
   assert.equal(describeHint({ ...base, kind: 'pot', via: 'combo', target: 9 }),
     'Pot the 9 in a combination (85 % of the computer\'s trials went in): 2.3 m/s, draw.');
+  assert.equal(describeHint({ ...base, kind: 'pot', via: 'carom', target: 2 }),
+    'Carom the 2 off another ball (85 % of the computer\'s trials went in): 2.3 m/s, draw.');
 });
