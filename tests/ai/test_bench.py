@@ -4,6 +4,7 @@ report counts the seeds only one version won."""
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -39,3 +40,18 @@ def test_a_saved_run_replays_seed_for_seed_and_the_report_counts_differences(
     now_only, then_only = (1, 0) if saved["runouts"]["3"] else (0, 1)
     assert f"won only now {now_only}, only then {then_only};" in report
     assert "of 2;" in report
+
+
+def test_the_carom_benchmark_finds_the_engine_corrected_aims_drop_more(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    from bench.caroms import main as caroms
+
+    caroms(["--tables", "80", "--seed", "0"])
+    report = capsys.readouterr().out
+    match = re.search(r"geometry's aim (\d+)%, corrected (\d+)%", report)
+    assert match is not None, report
+    raw, corrected = int(match.group(1)), int(match.group(2))
+    assert corrected > raw + 20  # the secant of engine shots finds the aims that drop
+    strokes = re.search(r"(\d+) strokes", report)
+    assert strokes is not None and int(strokes[1]) > 30
