@@ -361,9 +361,11 @@ def carom_options(
             for p in range(len(pk.aims)):
                 for contact in _kiss_points(positions[row], positions[row_k], pk.aims[p], r, roll):
                     rows = (cue_row, row, row_k)
-                    option = _carom(table, positions, on, rows, contact, p, aim_sigma, model)
+                    option = _carom(
+                        table, positions, on, rows, contact, (target, kiss, p), aim_sigma, model
+                    )
                     if option is not None:
-                        out.append(replace(option, target=target, carrier=kiss))
+                        out.append(option)
     out.sort(key=lambda o: -o.chance)
     return out
 
@@ -375,11 +377,11 @@ def _kiss_points(
     with rolling share `roll`: the zeros, round the kissed ball, of the angle between the
     path after the kiss and the line to the pocket."""
     alpha = np.linspace(-math.pi, math.pi, KISS_STEPS, endpoint=False)
-    out = (np.cos(alpha), np.sin(alpha))
-    contacts = kiss + 2 * r * np.stack(out, axis=1)
+    outward = np.stack((np.cos(alpha), np.sin(alpha)), axis=1)
+    contacts = kiss + 2 * r * outward
     incoming = contacts - ball
     incoming /= np.linalg.norm(incoming, axis=1)[:, None]
-    normal = -np.stack(out, axis=1)  # from the contact to the kissed ball's centre
+    normal = -outward  # from the contact to the kissed ball's centre
     cos_kiss = (incoming * normal).sum(axis=1)
     leaves = 5 * (incoming - cos_kiss[:, None] * normal) + 2 * roll * incoming
     to_aim = aim - contacts
@@ -405,15 +407,16 @@ def _carom(
     on: np.ndarray,
     rows: tuple[int, int, int],
     contact: np.ndarray,
-    pocket: int,
+    route: tuple[int, int, int],
     aim_sigma: float,
     model: ChanceModel,
 ) -> PotOption | None:
-    """The carom of the ball in row `rows[1]` off the ball in row `rows[2]`, its centre at
-    `contact` at the kiss (the cue ball in row `rows[0]`), or None when it cannot be
-    played; `target` and `carrier` are left for the caller to set."""
+    """The carom of the ball in row `rows[1]` off the ball in row `rows[2]` (the cue ball
+    in row `rows[0]`), its centre at `contact` at the kiss, or None when it cannot be
+    played; `route` is (that ball, the kissed ball, the pocket)."""
     r = table.ball_radius
     pk = pockets_of(table)
+    target, kiss_ball, pocket = route
     cue, ball, kiss = positions[rows[0]], positions[rows[1]], positions[rows[2]]
     aim = pk.aims[pocket]
     to_kiss, to_pocket = contact - ball, aim - contact
@@ -442,7 +445,7 @@ def _carom(
     kiss_cut = math.acos(min(1.0, cos_kiss))
     aim_error = error * link / (2 * r * max(cos_kiss, 0.05))
     return PotOption(
-        target=-1,
+        target=target,
         pocket=pocket,
         angle=math.atan2(to_ghost[1], to_ghost[0]),
         chance=float(drop_chance(window, d2, _sigma(model, aim_error, kiss_cut, 0.0))),
@@ -450,6 +453,7 @@ def _carom(
         d2=d2,
         cut=math.acos(min(1.0, cos_cut)),
         via="carom",
+        carrier=kiss_ball,
         link=link,
         link_cut=math.pi / 2 - kiss_cut,
     )
