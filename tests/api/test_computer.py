@@ -96,7 +96,11 @@ def test_a_hint_shows_the_strongest_plan_without_playing_it(client: TestClient):
     assert hint["level"] == "pro" and hint["kind"] in ("pot", "safety", "kick")
     assert hint["place"] is not None and 0 < hint["speed"] <= 12.0  # ball in hand in practice
     assert len(hint["tip"]) == 2
-    assert hint["via"] in ("direct", "bank", "combo", "carom") if hint["kind"] == "pot" else not hint["via"]
+    assert (
+        hint["via"] in ("direct", "bank", "combo", "carom")
+        if hint["kind"] == "pot"
+        else not hint["via"]
+    )
     # Nothing was played: the table and the turn are as they were.
     assert client.get(f"/api/rooms/{room_id}").json()["state"] == before
     # The plan is one the room accepts: place the cue ball there and play it.
