@@ -63,8 +63,8 @@ KICK_SPEEDS = (1.5, 2.6, 4.0)
 KICK_OFFSETS = (-2.0, -0.8, 0.0, 0.8, 2.0)  # degrees off the mirror-image line
 SWEEP_SPEEDS = (1.6, 3.2)
 SWEEP_ANGLES = 40
-# Banks and combinations (`indirect`), for the levels that look ahead when few pots are on
-# (`FEW_POTS`): the best routes of each, and the strokes tried on each (a bank's route
+# Banks, combinations and caroms (`indirect`), for the levels that look ahead when few pots
+# are on (`FEW_POTS`): the best routes of each, and the speeds tried on each (a bank's route
 # comes with an aim per restitution).
 BANK_ROUTES, COMBOS, CAROMS = 2, 2, 2
 BANK_SPEED_FACTORS = (1.25, 1.8, 2.6)
@@ -354,7 +354,7 @@ class Search:
         out = []
         for option in options[:pairs]:
             out.extend(self._variants(option, needs_call, fine))
-        if fine:  # few pots on: the banks and combinations may be the best of them
+        if fine:  # few pots on: the banks, combinations and caroms may be the best of them
             out.extend(self.indirect_candidates(balls, needs_call))
         return out
 
