@@ -98,7 +98,7 @@ class PotOption:
     ball hits `carrier`, which travels `link` to hit `target` at a cut of `link_cut`) or
     "carom" (`target` travels `link` to glance off `carrier`, its path turning by
     `link_cut`; d2 is then from the kiss to the pocket); `indirect`. route: the aims of one
-    bank or carom route share it (each aimed for another rebound or roll).
+    bank route share it (one for each restitution the cushion may have).
     """
 
     target: int
@@ -392,7 +392,7 @@ def speed_for(option: PotOption, u_roll_g: float = 0.0981) -> float:
     v_obj = math.sqrt(2 * u_roll_g * (option.d2 + 0.25))
     if option.via == "bank":
         v_obj /= 0.85  # the cushion takes some of it
-    if option.via in ("combo", "carom"):  # the first ball must carry the speed to the second
+    if option.via in ("combo", "carom"):  # the speed the second collision needs, and the link
         v_obj = math.sqrt(
             (v_obj / max(math.cos(option.link_cut), 0.25) / 0.95) ** 2 + 2 * u_roll_g * option.link
         )
