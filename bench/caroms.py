@@ -18,7 +18,7 @@ import time
 import numpy as np
 
 from server.ai import LEVELS, Bot
-from server.ai.aiming import aim_indirect, aimed, perturb
+from server.ai.aiming import aim_carom, aimed, perturb
 from server.ai.geometry import speed_for
 from server.ai.indirect import carom_options
 from server.ai.search import CAROM_SPEED_FACTORS
@@ -67,9 +67,7 @@ def main(argv: list[str] | None = None) -> int:
             for factor in CAROM_SPEED_FACTORS:
                 speed = min(speed_for(option) * factor, 0.85 * MAX_SPEED)
                 shot = aimed(option.angle, speed, 0.0, 0.0)
-                fixed, used = aim_indirect(
-                    table, balls, shot, option.target, option.pocket, "carom"
-                )
+                fixed, used = aim_carom(table, balls, shot, option.target, option.pocket)
                 strokes, sims = strokes + 1, sims + used
                 raw_made += drops(table, balls, shot, option.target)
                 if not drops(table, balls, fixed, option.target):

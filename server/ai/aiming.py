@@ -18,13 +18,12 @@ from .levels import Level
 THROW_STEP = math.radians(0.05)  # the aim step of the secant that allows for the throw
 THROW_MAX = math.radians(1.0)  # larger corrections are not trusted (a kiss, a near miss)
 THROW_LOOK = 0.04  # s after the contact at which the object ball's direction is read
-# The secant on a carom's or a bank's aim (`aim_indirect`): its first step, the engine
-# shots it may take, the largest correction trusted and a miss small enough to stop at.
-INDIRECT_NUDGE = math.radians(0.02)
-INDIRECT_STEPS = 4
-INDIRECT_MAX = {"carom": math.radians(0.5), "bank": math.radians(1.0)}
-INDIRECT_DONE = math.radians(0.2)
-TURNS = {"carom": "ball", "bank": "cushion"}  # the event the path to the pocket starts at
+# The secant on a carom's aim (`aim_carom`): its first step, the engine shots it may take,
+# the largest correction trusted and a miss small enough to stop at.
+CAROM_NUDGE = math.radians(0.02)
+CAROM_STEPS = 4
+CAROM_MAX = math.radians(0.5)
+CAROM_DONE = math.radians(0.2)
 
 
 def clamp_shot(angle: float, speed: float, side: float, height: float) -> Shot:
@@ -106,54 +105,49 @@ def departure(table: Table, balls: BallSet, shot: Shot, target: int) -> float | 
     return math.atan2(y - oy, x - ox)
 
 
-def aim_indirect(
-    table: Table, balls: BallSet, shot: Shot, target: int, pocket: int, via: str
+def aim_carom(
+    table: Table, balls: BallSet, shot: Shot, target: int, pocket: int
 ) -> tuple[Shot, int]:
-    """`shot` with its aim turned so that the exact stroke's carom or bank (`via`) sends
-    `target` at the centre of `pocket`, and the simulations that took. After a kiss the
-    ball bends forward as it rolls, by an amount that depends on the speed and the
-    distance, and the kiss throws it; a cushion sends a ball back shorter or longer with
-    its speed and spin: the geometry's aim missed most caroms and banks without noise. A
-    secant on where the ball goes after the kiss or the cushion (`path_miss`),
-    `INDIRECT_STEPS` engine shots at most; speed and tip stay, and the aim that missed
-    least is kept."""
-    first = path_miss(table, balls, shot, target, pocket, via)
+    """`shot` with its aim turned so that the exact stroke's carom sends `target` at the
+    centre of `pocket`, and the simulations that took. After the kiss the ball bends
+    forward as it rolls, by an amount that depends on the speed and the distance, and the
+    kiss throws it: the geometry's aim missed most caroms without noise. A secant on
+    where the ball goes after the kiss (`kiss_miss`), `CAROM_STEPS` engine shots at most;
+    speed and tip stay, and the aim that missed least is kept."""
+    first = kiss_miss(table, balls, shot, target, pocket)
     if first is None:
         return shot, 1
     best, best_miss, used = shot, abs(first), 1
     a0, m0 = shot.angle, first
-    a1 = shot.angle + INDIRECT_NUDGE
-    for _ in range(INDIRECT_STEPS):
-        if abs(math.remainder(a1 - shot.angle, 2 * math.pi)) > INDIRECT_MAX[via]:
+    a1 = shot.angle + CAROM_NUDGE
+    for _ in range(CAROM_STEPS):
+        if abs(math.remainder(a1 - shot.angle, 2 * math.pi)) > CAROM_MAX:
             break
         trial = clamp_shot(a1, shot.speed, *shot.tip)
-        m1 = path_miss(table, balls, trial, target, pocket, via)
+        m1 = kiss_miss(table, balls, trial, target, pocket)
         used += 1
         if m1 is None:
             break
         if abs(m1) < best_miss:
             best, best_miss = trial, abs(m1)
-        if abs(m1) < INDIRECT_DONE or m1 == m0:
+        if abs(m1) < CAROM_DONE or m1 == m0:
             break
         a0, m0, a1 = a1, m1, a1 - m1 * (a1 - a0) / (m1 - m0)
     return best, used
 
 
-def path_miss(
-    table: Table, balls: BallSet, shot: Shot, target: int, pocket: int, via: str
-) -> float | None:
-    """How far (radians, seen from where `target` met the ball it glances off, or the
-    cushion, as `via` is "carom" or "bank") its path then misses `pocket`'s aim point:
-    where it is when it has come as far as the pocket, or when it next meets anything.
-    None when the cue ball does not hit `target` first or `target` meets something else
-    first."""
+def kiss_miss(table: Table, balls: BallSet, shot: Shot, target: int, pocket: int) -> float | None:
+    """How far (radians, seen from where `target` kissed another ball) its path then
+    misses `pocket`'s aim point: where it is when it has come as far as the pocket, or
+    when it next meets anything. None when the cue ball does not hit `target` first or
+    `target` meets something else before its kiss."""
     result = simulate(table, balls, shot)
     events = result.events
     hit = next((k for k, e in enumerate(events) if e.kind == "ball"), None)
     if hit is None or set(events[hit].ids) != {CUE, target}:
         return None
     mine = [e for e in events[hit + 1 :] if target in e.ids]
-    if not mine or mine[0].kind != TURNS[via] or CUE in mine[0].ids:
+    if not mine or mine[0].kind != "ball" or CUE in mine[0].ids:
         return None
     frames = result.frames
     row = result.final.index(target)  # the rows of the frames are those of the set

@@ -338,7 +338,7 @@ def carom_options(
     (any but the cue ball), off which it glances into a pocket. For each kissed ball,
     pocket and side, the contact from which the ball's path after the kiss runs into the
     pocket (`CAROM_ROLL_DISTANCE`; the search then lets the engine correct the aim:
-    `aiming.aim_indirect`). Rejected when a path is blocked, the kiss is too full or
+    `aiming.aim_carom`). Rejected when a path is blocked, the kiss is too full or
     too thin, the ball is more than `MAX_CAROM_LINK` from it or the approach to the mouth
     is too steep. The chance carries the ball's angle error through the kiss, as for a
     combination."""

@@ -22,7 +22,7 @@ from server.rules.ruling import Ruling
 from server.rules.shotfacts import shot_facts
 from server.rules.spotting import respot
 
-from .aiming import aim_for_throw, aim_indirect, aimed, clamp_shot, perturb
+from .aiming import aim_carom, aim_for_throw, aimed, clamp_shot, perturb
 from .geometry import (
     MIN_AIM_SIGMA,
     PotOption,
@@ -362,7 +362,7 @@ class Search:
         """The best banks, combinations and caroms, a few strokes each (centre ball, and
         follow for a combination); the simulations judge them like any pot. In 9-ball the
         combination may drop any ball (the lowest is hit first), in 8-ball only the
-        shooter's own. A carom's aim is corrected with the engine (`aim_indirect`), whose
+        shooter's own. A carom's aim is corrected with the engine (`aim_carom`), whose
         simulations count against the budget."""
         targets = self.targets(self.pos)
         sigma = self.plan_sigma()
@@ -379,8 +379,8 @@ class Search:
                 out.extend(_strokes(option, needs_call, COMBO_SPEED_FACTORS, TIPS[:2]))
         for option in carom_options(self.table, balls, targets, sigma)[:CAROMS]:
             for cand in _strokes(option, needs_call, CAROM_SPEED_FACTORS, TIPS[:1]):
-                cand.shot, used = aim_indirect(
-                    self.table, balls, cand.shot, option.target, option.pocket, "carom"
+                cand.shot, used = aim_carom(
+                    self.table, balls, cand.shot, option.target, option.pocket
                 )
                 self.sims += used
                 out.append(cand)

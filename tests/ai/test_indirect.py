@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 from server.ai import Bot, play_turn
-from server.ai.aiming import aim_indirect, aimed, path_miss
+from server.ai.aiming import aim_carom, aimed, kiss_miss
 from server.ai.geometry import pot_options, speed_for
 from server.ai.indirect import bank_options, carom_options, combo_options
 from server.engine import simulate
@@ -117,9 +117,9 @@ def test_the_engine_corrects_a_caroms_aim(eight: Game) -> None:
     option = carom_options(TABLE, game.balls, [1], SIGMA)[0]
     assert option.pocket == 1 and option.carrier == 9
     shot = aimed(option.angle, 1.8 * speed_for(option), 0.0, 0.0)
-    before = path_miss(TABLE, game.balls, shot, 1, option.pocket, "carom")
-    corrected, used = aim_indirect(TABLE, game.balls, shot, 1, option.pocket, "carom")
-    after = path_miss(TABLE, game.balls, corrected, 1, option.pocket, "carom")
+    before = kiss_miss(TABLE, game.balls, shot, 1, option.pocket)
+    corrected, used = aim_carom(TABLE, game.balls, shot, 1, option.pocket)
+    after = kiss_miss(TABLE, game.balls, corrected, 1, option.pocket)
     assert before is not None and after is not None and 2 <= used <= 5
     assert abs(before) > math.radians(2.0) and abs(after) < math.radians(0.5)
     assert (corrected.speed, corrected.tip) == (shot.speed, shot.tip)
