@@ -100,6 +100,44 @@ def _approach(
     return ghost, to_ghost, d1, cos_cut
 
 
+def _through(
+    table: Table,
+    positions: np.ndarray,
+    on: np.ndarray,
+    rows: tuple[tuple[int, int], tuple[int, int]],
+    turn: np.ndarray,
+    pocket: int,
+    model: ChanceModel,
+) -> tuple[np.ndarray, float, float, float] | None:
+    """How the cue ball (row `rows[0][0]`) sends the ball in row `rows[0][1]` to `turn`
+    (the bounce point of a bank, or its centre at the kiss of a carom) and on into
+    `pocket`: (cue ball to ghost ball, its length, cos of the cut, the mouth's window
+    under `model`), or None when the approach to the mouth is too steep, the ghost ball is
+    off the bed, the cut is too thin or a path is blocked. The rows `rows[0]` travel the
+    cue ball's way and `rows[1]` the ball's two legs."""
+    r = table.ball_radius
+    pk = pockets_of(table)
+    cue, ball = positions[rows[0][0]], positions[rows[0][1]]
+    aim = pk.aims[pocket]
+    leg1, leg2 = turn - ball, aim - turn
+    d_leg1, d_leg2 = float(np.linalg.norm(leg1)), float(np.linalg.norm(leg2))
+    cos_in = float(leg2 @ pk.outward[pocket]) / d_leg2
+    window = _window(model, pk.mouths[pocket], cos_in, r, pk.side[pocket])
+    if cos_in <= MIN_COS_IN or window <= 0.003:
+        return None
+    approach = _approach(table, cue, ball, leg1 / d_leg1)
+    if approach is None:
+        return None
+    ghost, to_ghost, d1, cos_cut = approach
+    if not (
+        _clear(positions, on, rows[0], cue, ghost, r)
+        and _clear(positions, on, rows[1], ball, turn, r)
+        and _clear(positions, on, rows[1], turn, aim, r)
+    ):
+        return None
+    return to_ghost, d1, cos_cut, window
+
+
 def bank_options(
     table: Table,
     balls: BallSet,
@@ -173,28 +211,16 @@ def _bank(
     row `rows[0]`), or None when it cannot be played. Its chance is the direct pot's
     estimate over the whole path, with the cushion's scatter added."""
     r = table.ball_radius
-    pk = pockets_of(table)
-    cue, obj = positions[rows[0]], positions[rows[1]]
-    aim = pk.aims[pocket]
-    leg1, leg2 = bounce - obj, aim - bounce
-    d_leg1, d_leg2 = float(np.linalg.norm(leg1)), float(np.linalg.norm(leg2))
+    obj = positions[rows[1]]
+    aim = pockets_of(table).aims[pocket]
+    d_leg1 = float(np.linalg.norm(bounce - obj))
+    d_leg2 = float(np.linalg.norm(aim - bounce))
     if d_leg1 < 1e-6 or d_leg2 < 1e-6:
         return None
-    u = leg1 / d_leg1
-    cos_in = float(leg2 @ pk.outward[pocket]) / d_leg2
-    window = _window(model, pk.mouths[pocket], cos_in, r, pk.side[pocket])
-    if cos_in <= MIN_COS_IN or window <= 0.003:
+    way = _through(table, positions, on, (rows, rows), bounce, pocket, model)
+    if way is None:
         return None
-    approach = _approach(table, cue, obj, u)
-    if approach is None:
-        return None
-    ghost, to_ghost, d1, cos_cut = approach
-    if not (
-        _clear(positions, on, rows, cue, ghost, r)
-        and _clear(positions, on, rows, obj, bounce, r)
-        and _clear(positions, on, rows, bounce, aim, r)
-    ):
-        return None
+    to_ghost, d1, cos_cut, window = way
     cut = math.acos(min(1.0, cos_cut))
     d2 = d_leg1 + d_leg2
     aim_error = d1 * aim_sigma / (2 * r * max(cos_cut, 0.05))
@@ -415,30 +441,18 @@ def _carom(
     in row `rows[0]`), its centre at `contact` at the kiss, or None when it cannot be
     played; `route` is (that ball, the kissed ball, the pocket)."""
     r = table.ball_radius
-    pk = pockets_of(table)
     target, kiss_ball, pocket = route
-    cue, ball, kiss = positions[rows[0]], positions[rows[1]], positions[rows[2]]
-    aim = pk.aims[pocket]
-    to_kiss, to_pocket = contact - ball, aim - contact
-    link, d2 = float(np.linalg.norm(to_kiss)), float(np.linalg.norm(to_pocket))
+    ball, kiss = positions[rows[1]], positions[rows[2]]
+    to_kiss = contact - ball
+    link = float(np.linalg.norm(to_kiss))
+    d2 = float(np.linalg.norm(pockets_of(table).aims[pocket] - contact))
     if link < 1e-3 or link > MAX_CAROM_LINK or d2 < 1e-6:
         return None
-    u = to_kiss / link
-    cos_kiss = float(u @ (kiss - contact)) / (2 * r)
-    cos_in = float(to_pocket @ pk.outward[pocket]) / d2
-    window = _window(model, pk.mouths[pocket], cos_in, r, pk.side[pocket])
-    if cos_in <= MIN_COS_IN or window <= 0.003:
+    way = _through(table, positions, on, (rows[:2], rows[1:]), contact, pocket, model)
+    if way is None:
         return None
-    approach = _approach(table, cue, ball, u)
-    if approach is None:
-        return None
-    ghost, to_ghost, d1, cos_cut = approach
-    if not (
-        _clear(positions, on, rows[:2], cue, ghost, r)
-        and _clear(positions, on, rows[1:], ball, contact, r)
-        and _clear(positions, on, rows[1:], contact, aim, r)
-    ):
-        return None
+    to_ghost, d1, cos_cut, window = way
+    cos_kiss = float((to_kiss / link) @ (kiss - contact)) / (2 * r)
     # The ball's angle error moves the kiss's contact: the path after it turns by the
     # offset over a ball's width times the cosine of the kiss's cut.
     error = d1 * aim_sigma / (2 * r * max(cos_cut, 0.05))
