@@ -7,10 +7,11 @@ does not see.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 
-from server.engine import CUE, MAX_SPEED, MAX_TIP, BallSet, Shot, Table, simulate
+from server.engine import CUE, MAX_SPEED, MAX_TIP, BallSet, Event, Shot, Table, simulate
 
 from .geometry import pockets_of
 from .levels import Level
@@ -83,14 +84,24 @@ def aim_for_throw(
     return clamp_shot(shot.angle + step, shot.speed, *shot.tip), 2
 
 
+def first_hit(events: Sequence[Event], target: int) -> int | None:
+    """The index of the shot's first collision between balls when it is the cue ball's
+    with `target`, else None (another ball was hit first, or none)."""
+    hit = next((k for k, e in enumerate(events) if e.kind == "ball"), None)
+    if hit is None or set(events[hit].ids) != {CUE, target}:
+        return None
+    return hit
+
+
 def departure(table: Table, balls: BallSet, shot: Shot, target: int) -> float | None:
     """The direction `target` leaves in when `shot` hits it first (from the engine's
     frames, so with the throw), or None when it is not the first ball hit or is stopped
     at once."""
     result = simulate(table, balls, shot)
-    contact = next((e for e in result.events if e.kind == "ball"), None)
-    if contact is None or set(contact.ids) != {CUE, target}:
+    hit = first_hit(result.events, target)
+    if hit is None:
         return None
+    contact = result.events[hit]
     later = [e.time for e in result.events if e.time > contact.time and target in e.ids]
     until = min([*later, contact.time + THROW_LOOK])
     frames = result.frames
@@ -143,8 +154,8 @@ def kiss_miss(table: Table, balls: BallSet, shot: Shot, target: int, pocket: int
     `target` meets something else before its kiss."""
     result = simulate(table, balls, shot)
     events = result.events
-    hit = next((k for k, e in enumerate(events) if e.kind == "ball"), None)
-    if hit is None or set(events[hit].ids) != {CUE, target}:
+    hit = first_hit(events, target)
+    if hit is None:
         return None
     mine = [e for e in events[hit + 1 :] if target in e.ids]
     if not mine or mine[0].kind != "ball" or CUE in mine[0].ids:

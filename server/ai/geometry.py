@@ -161,6 +161,17 @@ def drop_chance(window: float, dist2: float, sigma_obj: float) -> float:
     return math.erf((window / dist2) / (sigma_obj * math.sqrt(2.0)))
 
 
+@njit(cache=True, inline="always")
+def object_sigma(
+    s_aim: float, sin_cut: float, floor: float, cut_sigma: float, extra: float
+) -> float:
+    """The object ball's angle error (`ChanceModel`): the aim term `s_aim` (scaled), the
+    floor and the cut term the tip error adds, and `extra` (a cushion's scatter), as one
+    sigma."""
+    s_cut = cut_sigma * sin_cut
+    return math.sqrt(s_aim * s_aim + floor * floor + s_cut * s_cut + extra * extra)
+
+
 @njit(cache=True)
 def _pot_kernel(
     positions: np.ndarray,
@@ -220,8 +231,8 @@ def _pot_kernel(
                 continue
             ok[i, p] = True
             s_aim = aim_scale * dist1 * sigma / (2 * r * max(cc, 0.05))
-            s_cut = cut_sigma * math.sqrt(max(1.0 - cc * cc, 0.0))
-            sigma_obj = math.sqrt(s_aim * s_aim + floor * floor + s_cut * s_cut)
+            sin_cut = math.sqrt(max(1.0 - cc * cc, 0.0))
+            sigma_obj = object_sigma(s_aim, sin_cut, floor, cut_sigma, 0.0)
             chance[i, p] = drop_chance(window, dist2, sigma_obj)
     return ok, chance, angle, d1, d2, cos_cut
 

@@ -23,6 +23,7 @@ from .geometry import (
     PotOption,
     clean_window,
     drop_chance,
+    object_sigma,
     path_clear,
     pockets_of,
 )
@@ -71,8 +72,9 @@ def _clear(
 def _sigma(model: ChanceModel, aim_error: float, cut: float, extra: float) -> float:
     """The object ball's angle error of `model` (its aim term, floor and cut term) plus
     `extra`, as one sigma."""
-    s_cut = model.cut * math.sin(cut)
-    return math.sqrt((model.aim_scale * aim_error) ** 2 + model.floor**2 + s_cut**2 + extra**2)
+    return float(
+        object_sigma(model.aim_scale * aim_error, math.sin(cut), model.floor, model.cut, extra)
+    )
 
 
 def _window(model: ChanceModel, mouth: float, cos_in: float, r: float, side: float) -> float:
@@ -287,9 +289,9 @@ def combo_options(
                 d1, link, cut_a, cut_b, angle = option
                 # The first ball's error, then the second's: the angle error grows by
                 # the link over a ball's width at the second collision.
-                error_a = model.aim_scale * d1 * aim_sigma / (2 * r * max(math.cos(cut_a), 0.05))
+                error_a = d1 * aim_sigma / (2 * r * max(math.cos(cut_a), 0.05))
                 aim_error = error_a * link / (2 * r * max(math.cos(cut_b), 0.05))
-                sigma = _sigma(model, aim_error / model.aim_scale, cut_b, 0.0)
+                sigma = _sigma(model, aim_error, cut_b, 0.0)
                 chance = float(drop_chance(window, d2, sigma))
                 out.append(
                     PotOption(
