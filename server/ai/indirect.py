@@ -70,8 +70,8 @@ def _clear(
 
 
 def _sigma(model: ChanceModel, aim_error: float, cut: float, extra: float) -> float:
-    """The object ball's angle error of `model` (its aim term, floor and cut term) plus
-    `extra`, as one sigma."""
+    """The object ball's angle error under `model` (`geometry.object_sigma` with its aim
+    scale, floor and cut term) for an unscaled aim error and a cut, plus `extra`."""
     return float(
         object_sigma(model.aim_scale * aim_error, math.sin(cut), model.floor, model.cut, extra)
     )
