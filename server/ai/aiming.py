@@ -84,7 +84,7 @@ def aim_for_throw(
     return clamp_shot(shot.angle + step, shot.speed, *shot.tip), 2
 
 
-def first_hit(events: Sequence[Event], target: int) -> int | None:
+def _first_hit(events: Sequence[Event], target: int) -> int | None:
     """The index of the shot's first collision between balls when it is the cue ball's
     with `target`, else None (another ball was hit first, or none)."""
     hit = next((k for k, e in enumerate(events) if e.kind == "ball"), None)
@@ -98,7 +98,7 @@ def departure(table: Table, balls: BallSet, shot: Shot, target: int) -> float | 
     frames, so with the throw), or None when it is not the first ball hit or is stopped
     at once."""
     result = simulate(table, balls, shot)
-    hit = first_hit(result.events, target)
+    hit = _first_hit(result.events, target)
     if hit is None:
         return None
     contact = result.events[hit]
@@ -154,7 +154,7 @@ def kiss_miss(table: Table, balls: BallSet, shot: Shot, target: int, pocket: int
     `target` meets something else before its kiss."""
     result = simulate(table, balls, shot)
     events = result.events
-    hit = first_hit(events, target)
+    hit = _first_hit(events, target)
     if hit is None:
         return None
     mine = [e for e in events[hit + 1 :] if target in e.ids]
