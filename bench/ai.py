@@ -41,7 +41,14 @@ import numpy as np
 from server.ai import LEVELS, Bot, Turn, play_turn
 from server.ai.aiming import clamp_shot
 from server.ai.bot import NormalSource
-from server.ai.geometry import ChanceModel, pot_options, speed_for
+from server.ai.geometry import (
+    ChanceModel,
+    clean_window,
+    drop_chance,
+    object_sigma,
+    pot_options,
+    speed_for,
+)
 from server.codec import to_data
 from server.engine import CUE, TICK_HZ, Shot
 from server.rooms.computer import plan_turn
@@ -413,14 +420,16 @@ def pot_rates(configs: int, seed: int) -> np.ndarray:
 
 
 def model_rates(data: np.ndarray, model: ChanceModel, aim: float, r: float) -> np.ndarray:
-    """The chance `model` gives each row of `pot_rates` (the formula of `_pot_kernel`)."""
-    d1, d2, cut, side, cos_in, _ = data.T
-    mouth = np.where(side > 0, 0.127, 0.114)
-    window = (mouth * np.clip(cos_in, 0, 1) - 2 * r) / 2 + model.jaw - model.side * side
-    s_aim = model.aim_scale * d1 * aim / (2 * r * np.maximum(np.cos(cut), 0.05))
-    sigma = np.sqrt(s_aim**2 + model.floor**2 + (model.cut * np.sin(cut)) ** 2)
-    z = np.maximum(window, 1e-4) / d2 / (sigma * math.sqrt(2))
-    return np.clip(np.array([math.erf(v) for v in z]), 1e-4, 1 - 1e-4)
+    """The chance `model` gives each row of `pot_rates`, with the pot kernel's own helpers
+    (`clean_window`, `object_sigma`, `drop_chance`)."""
+    chances = []
+    for d1, d2, cut, side, cos_in, _ in data:
+        mouth = 0.127 if side > 0 else 0.114
+        window = clean_window(mouth, cos_in, r, model.jaw) - model.side * side
+        s_aim = model.aim_scale * d1 * aim / (2 * r * max(math.cos(cut), 0.05))
+        sigma = object_sigma(s_aim, math.sin(cut), model.floor, model.cut, 0.0)
+        chances.append(drop_chance(max(window, 1e-4), d2, sigma))
+    return np.clip(np.array(chances), 1e-4, 1 - 1e-4)
 
 
 def calibrate(configs: int, seed: int) -> None:
