@@ -45,6 +45,7 @@ from server.ai.geometry import (
     ChanceModel,
     clean_window,
     drop_chance,
+    ghost_error,
     object_sigma,
     pot_options,
     speed_for,
@@ -421,12 +422,12 @@ def pot_rates(configs: int, seed: int) -> np.ndarray:
 
 def model_rates(data: np.ndarray, model: ChanceModel, aim: float, r: float) -> np.ndarray:
     """The chance `model` gives each row of `pot_rates`, with the pot kernel's own helpers
-    (`clean_window`, `object_sigma`, `drop_chance`)."""
+    (`clean_window`, `ghost_error`, `object_sigma`, `drop_chance`)."""
     chances = []
     for d1, d2, cut, side, cos_in, _ in data:
         mouth = 0.127 if side > 0 else 0.114
         window = clean_window(mouth, cos_in, r, model.jaw) - model.side * side
-        s_aim = model.aim_scale * d1 * aim / (2 * r * max(math.cos(cut), 0.05))
+        s_aim = ghost_error(d1, aim, math.cos(cut), r, model.aim_scale)
         sigma = object_sigma(s_aim, math.sin(cut), model.floor, model.cut, 0.0)
         chances.append(drop_chance(max(window, 1e-4), d2, sigma))
     return np.clip(np.array(chances), 1e-4, 1 - 1e-4)

@@ -162,6 +162,14 @@ def drop_chance(window: float, dist2: float, sigma_obj: float) -> float:
 
 
 @njit(cache=True, inline="always")
+def ghost_error(dist: float, aim_sigma: float, cos_cut: float, r: float, scale: float) -> float:
+    """The object ball's angle error from the cue's aim error `aim_sigma` over `dist` to
+    the ghost ball: the contact moves by dist * sigma across the ball's width seen at the
+    cut (2R cos cut), times `scale` (the chance model's aim scale, 1 for the plain one)."""
+    return scale * dist * aim_sigma / (2 * r * max(cos_cut, 0.05))
+
+
+@njit(cache=True, inline="always")
 def object_sigma(
     s_aim: float, sin_cut: float, floor: float, cut_sigma: float, extra: float
 ) -> float:
@@ -230,7 +238,7 @@ def _pot_kernel(
             ):
                 continue
             ok[i, p] = True
-            s_aim = aim_scale * dist1 * sigma / (2 * r * max(cc, 0.05))
+            s_aim = ghost_error(dist1, sigma, cc, r, aim_scale)
             sin_cut = math.sqrt(max(1.0 - cc * cc, 0.0))
             sigma_obj = object_sigma(s_aim, sin_cut, floor, cut_sigma, 0.0)
             chance[i, p] = drop_chance(window, dist2, sigma_obj)
@@ -280,7 +288,7 @@ def _open_kernel(
                     continue
                 if not path_clear(cx, cy, gx, gy, positions, on, cue_row, row, r):
                     continue
-                s_aim = OPEN_REACH * sigma / (2 * r * max(cos_c, 0.05))
+                s_aim = ghost_error(OPEN_REACH, sigma, cos_c, r, 1.0)
                 best = max(best, drop_chance(window, dist2, s_aim))
         total += min(best / OPEN_EASY, 1.0)
     return total / len(rows)

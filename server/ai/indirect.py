@@ -23,6 +23,7 @@ from .geometry import (
     PotOption,
     clean_window,
     drop_chance,
+    ghost_error,
     object_sigma,
     path_clear,
     pockets_of,
@@ -225,7 +226,7 @@ def _bank(
     to_ghost, d1, cos_cut, window = way
     cut = math.acos(min(1.0, cos_cut))
     d2 = d_leg1 + d_leg2
-    aim_error = d1 * aim_sigma / (2 * r * max(cos_cut, 0.05))
+    aim_error = ghost_error(d1, aim_sigma, cos_cut, r, 1.0)
     sigma = _sigma(model, aim_error, cut, BANK_SIGMA)
     return PotOption(
         target=target,
@@ -289,7 +290,7 @@ def combo_options(
                 d1, link, cut_a, cut_b, angle = option
                 # The first ball's error, then the second's: the angle error grows by
                 # the link over a ball's width at the second collision.
-                error_a = d1 * aim_sigma / (2 * r * max(math.cos(cut_a), 0.05))
+                error_a = ghost_error(d1, aim_sigma, math.cos(cut_a), r, 1.0)
                 aim_error = error_a * link / (2 * r * max(math.cos(cut_b), 0.05))
                 sigma = _sigma(model, aim_error, cut_b, 0.0)
                 chance = float(drop_chance(window, d2, sigma))
@@ -457,7 +458,7 @@ def _carom(
     cos_kiss = float((to_kiss / link) @ (kiss - contact)) / (2 * r)
     # The ball's angle error moves the kiss's contact: the path after it turns by the
     # offset over a ball's width times the cosine of the kiss's cut.
-    error = d1 * aim_sigma / (2 * r * max(cos_cut, 0.05))
+    error = ghost_error(d1, aim_sigma, cos_cut, r, 1.0)
     kiss_cut = math.acos(min(1.0, cos_kiss))
     aim_error = error * link / (2 * r * max(cos_kiss, 0.05))
     return PotOption(
