@@ -163,9 +163,11 @@ def drop_chance(window: float, dist2: float, sigma_obj: float) -> float:
 
 @njit(cache=True, inline="always")
 def ghost_error(dist: float, aim_sigma: float, cos_cut: float, r: float, scale: float) -> float:
-    """The object ball's angle error from the cue's aim error `aim_sigma` over `dist` to
-    the ghost ball: the contact moves by dist * sigma across the ball's width seen at the
-    cut (2R cos cut), times `scale` (the chance model's aim scale, 1 for the plain one)."""
+    """The angle error of a struck ball from the striking ball's direction error
+    `aim_sigma` over `dist` to the contact (the cue ball's to the ghost ball, or a first
+    object ball's to the second in a combination or a kiss): the contact moves by
+    dist * sigma across the ball's width seen at the cut (2R cos cut), times `scale` (the
+    chance model's aim scale, 1 for the plain one)."""
     return scale * dist * aim_sigma / (2 * r * max(cos_cut, 0.05))
 
 

@@ -291,7 +291,7 @@ def combo_options(
                 # The first ball's error, then the second's: the angle error grows by
                 # the link over a ball's width at the second collision.
                 error_a = ghost_error(d1, aim_sigma, math.cos(cut_a), r, 1.0)
-                aim_error = error_a * link / (2 * r * max(math.cos(cut_b), 0.05))
+                aim_error = ghost_error(link, error_a, math.cos(cut_b), r, 1.0)
                 sigma = _sigma(model, aim_error, cut_b, 0.0)
                 chance = float(drop_chance(window, d2, sigma))
                 out.append(
@@ -460,7 +460,7 @@ def _carom(
     # offset over a ball's width times the cosine of the kiss's cut.
     error = ghost_error(d1, aim_sigma, cos_cut, r, 1.0)
     kiss_cut = math.acos(min(1.0, cos_kiss))
-    aim_error = error * link / (2 * r * max(cos_kiss, 0.05))
+    aim_error = ghost_error(link, error, cos_kiss, r, 1.0)
     return PotOption(
         target=target,
         pocket=pocket,
