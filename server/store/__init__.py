@@ -10,7 +10,8 @@ back is the rooms' job.
 
 The API (each `Repository` method is one transaction, run through the `Database`):
 
-    db = Database(path_or_url, write_retry=600.0, batch=None)   # connects, migrates
+    db = Database(path_or_url, write_retry=600.0, batch=None, start_retry=30.0)
+        # connects and migrates, trying again through passing failures for start_retry s
         # batch: queued writes per transaction (default 64 on PostgreSQL, 1 on SQLite)
     db.write(lambda repo: repo.save_room(room_id, text, epoch=e), "save room") -> Future
     db.submit(fn, retry_for=10.0) -> Future   db.run(fn) -> T   await db.call(fn) -> T

@@ -47,8 +47,11 @@ class _Job:
 
 class Database:
     """The store. `target` is a SQLite file's path or a `postgresql://` URL. `batch`: how
-    many queued writes may share a transaction. `sleep` and `clock` are how it waits
-    between tries (a test injects its own)."""
+    many queued writes may share a transaction. `start_retry`: how long opening and
+    migrating is tried again through passing failures (two processes starting on one new
+    SQLite file: SQLite tells one of them "locked" at once as both turn its journal to
+    WAL) before the process gives up. `sleep` and `clock` are how it waits between tries (a test injects
+    its own)."""
 
     def __init__(
         self,
@@ -56,6 +59,7 @@ class Database:
         write_retry: float = 600.0,
         *,
         batch: int | None = None,
+        start_retry: float = 30.0,
         sleep: Callable[[float], None] = time.sleep,
         clock: Callable[[], float] = time.monotonic,
     ) -> None:
@@ -63,6 +67,7 @@ class Database:
         self.backend = self.url.get_backend_name()  # "sqlite" | "postgresql"
         self.path = Path(self.url.database or "") if self.backend == "sqlite" else None
         self.write_retry = write_retry  # s a queued write is retried through failures
+        self.start_retry = start_retry  # s opening and migrating is retried
         # queued writes run this many to a transaction (PostgreSQL: a commit is a round trip
         # and a flush to disk; a SQLite commit in WAL mode flushes nothing)
         self.batch = batch if batch is not None else (64 if self.backend == "postgresql" else 1)
@@ -91,8 +96,7 @@ class Database:
     def _run(self) -> None:
         try:
             repo = Repository(make_engine(self.url))
-            with repo.transaction() as conn:
-                upgrade(conn)
+            self._attempt(_migrate, repo, self.start_retry)
         except BaseException as exc:
             self._ready.set_exception(exc)
             return
@@ -271,3 +275,9 @@ def _each_in_a_savepoint(repo: Repository, fns: list[Callable[[Repository], Any]
                 savepoint.commit()
                 outcomes.append((True, value))
     return outcomes
+
+
+def _migrate(repo: Repository) -> None:
+    """Bring the schema to the newest revision, in one write transaction."""
+    with repo.transaction() as conn:
+        upgrade(conn)

@@ -58,6 +58,27 @@ def test_writes_wait_out_a_12_second_lock_in_order(tmp_path: Path):
     assert [r.data for r in rooms] == [{"after_shot": 5}]
 
 
+def test_a_process_starting_while_another_holds_the_new_file_waits_for_it(tmp_path: Path):
+    """Two servers starting at once on one new SQLite file: whichever connects second is
+    told "locked" when it turns the journal to WAL. It tries again, not exits."""
+    holder = sqlite3.connect(tmp_path / "pool.db", isolation_level=None, check_same_thread=False)
+    holder.execute("BEGIN EXCLUSIVE")  # the other process, creating the file
+    waits: list[float] = []
+
+    def sleep(seconds: float) -> None:  # the store's wait between tries: the other is done
+        waits.append(seconds)
+        holder.execute("COMMIT")
+
+    db = Database(tmp_path / "pool.db", sleep=sleep)
+    try:
+        assert db.run(lambda repo: repo.rooms()) == []  # opened and migrated
+        assert db.run(lambda repo: repo.conn.execute("PRAGMA journal_mode").fetchone()) == ("wal",)
+    finally:
+        db.close()
+        holder.close()
+    assert waits == [0.05]  # one refused try (after the driver's own 5 s wait), then in
+
+
 @pytest.fixture
 def slow_client(tmp_path: Path) -> Iterator[TestClient]:
     settings = Settings(web_dir=tmp_path, db_path=tmp_path / "pool.db", pace=1.0)

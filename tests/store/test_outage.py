@@ -78,9 +78,11 @@ def test_a_read_gives_up_after_its_limit_and_the_store_goes_on(server: PostgresS
     server.stop("immediate")
     with pytest.raises(OperationalError):
         db.submit(lambda r: r.rooms(), retry_for=10.0).result()
-    with pytest.raises(OperationalError):
-        Database(url)  # nor can a process start on it meanwhile
     assert 5.0 < time.now <= 10.0
+    starting = StoreTime()
+    with pytest.raises(OperationalError):  # nor can a process start on it meanwhile:
+        Database(url, start_retry=20.0, sleep=starting.sleep, clock=starting.clock)
+    assert 15.0 < starting.now <= 20.0  # it tried for its window, then gave up
     server.start()
     assert [r.room_id for r in db.run(lambda r: r.rooms())] == ["room"]
     db.close()
