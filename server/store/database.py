@@ -50,8 +50,8 @@ class Database:
     many queued writes may share a transaction. `start_retry`: how long opening and
     migrating is tried again through passing failures (two processes starting on one new
     SQLite file: SQLite tells one of them "locked" at once as both turn its journal to
-    WAL) before the process gives up. `sleep` and `clock` are how it waits between tries (a test injects
-    its own)."""
+    WAL) before the process gives up. `sleep` and `clock` are how it waits between tries
+    (a test injects its own)."""
 
     def __init__(
         self,
