@@ -19,7 +19,7 @@ from server.engine import CUE, MAX_SPEED, BallSet, Shot, Table, simulate
 from server.rules.kinds import GameRules
 from server.rules.position import Position
 from server.rules.ruling import Ruling
-from server.rules.shotfacts import shot_facts
+from server.rules.shotfacts import ShotFacts, shot_facts
 from server.rules.spotting import respot
 
 from .aiming import aim_carom, aim_for_throw, aimed, clamp_shot, perturb
@@ -167,6 +167,18 @@ class Search:
     ) -> tuple[float, bool, Ruling, BallSet]:
         """Simulate `shot` from `before` played in `pos`: (value, pocketed legally, ruling,
         table after)."""
+        facts, ruling, final = self._play(pos, before, shot)
+        return (
+            self.value_of(pos, ruling, final, facts.pocketed),
+            self._made(ruling, facts.pocketed),
+            ruling,
+            final,
+        )
+
+    def _play(
+        self, pos: Position, before: BallSet, shot: Shot
+    ) -> tuple[ShotFacts, Ruling, BallSet]:
+        """Simulate `shot` and judge it: (what happened, the ruling, the table after)."""
         self.sims += 1
         result = simulate(self.table, before, shot)
         facts = shot_facts(before, result)
@@ -174,12 +186,7 @@ class Search:
         final = result.final
         if ruling.spot:
             final = respot(self.table, final, ruling.spot)
-        return (
-            self.value_of(pos, ruling, final, facts.pocketed),
-            self._made(ruling, facts.pocketed),
-            ruling,
-            final,
-        )
+        return facts, ruling, final
 
     def _made(self, ruling: Ruling, pocketed: tuple[int, ...]) -> bool:
         if ruling.winner is not None:
@@ -227,7 +234,16 @@ class Search:
         return replace(self.pos, called_pocket=cand.call) if cand.call is not None else self.pos
 
     def score0(self, balls: BallSet, cand: Candidate) -> None:
-        cand.value0, _, _, _ = self.outcome(self.pos_for(cand), balls, cand.shot)
+        """The stroke's value without noise. A safety or kick on the 8 that drops it in
+        another pocket than the one called would lose: it calls that pocket instead."""
+        pos = self.pos_for(cand)
+        facts, ruling, final = self._play(pos, balls, cand.shot)
+        cand.value0 = self.value_of(pos, ruling, final, facts.pocketed)
+        if cand.value0 == LOSS and cand.kind != "pot" and cand.call is not None:
+            dropped = [facts.pockets[t] for t in self.targets(pos) if t in facts.pockets]
+            if dropped and dropped[0] != cand.call:
+                cand.call = dropped[0]
+                self.score0(balls, cand)
 
     def score_noisy(self, balls: BallSet, cand: Candidate) -> None:
         pos = self.pos_for(cand)

@@ -8,13 +8,14 @@ import numpy as np
 import pytest
 
 from server.ai import LEVELS, Bot, Turn, play_turn
-from server.ai.aiming import departure, perturb
+from server.ai.aiming import clamp_shot, departure, perturb
 from server.ai.geometry import pot_options
 from server.ai.levels import BY_NAME
 from server.ai.search import (
     FEW_POTS,
     FINE_SPEED_FACTORS,
     FINE_TIPS,
+    WIN,
     Candidate,
     Search,
 )
@@ -355,3 +356,22 @@ def test_a_plan_never_runs_more_simulations_than_its_budget(eight: Game) -> None
             bot = Bot(level, seed=1)
             bot.plan(game, game.turn)
             assert 0 < bot.last_sims <= bot.level.budget, (level, bot.last_sims)
+
+
+def test_a_kick_that_drops_the_8_calls_the_pocket_it_drops_in(eight: Game) -> None:
+    """A safety or kick on the 8 is played with a call (the rules ask for one), but its
+    8 may drop anyway: in another pocket than the one called, that loses the game. The
+    stroke here sends the 8 straight into pocket 2 while the call made for it was 5."""
+    obj, cue = straight_line(2, 0.3, 0.35)
+    game = set_table(eight, {0: cue, 8: obj, 9: (0.4, 0.3)}, groups=SOLIDS_STRIPES)
+    pro = BY_NAME["pro"]
+    noise = np.random.default_rng(1).standard_normal((8, 4))
+    search = Search(TABLE, game.rules, game.position(), 0, pro, noise, noise[:0])
+    option = next(o for o in pot_options(TABLE, game.balls, [8], pro.aim) if o.pocket == 2)
+    stroke = search._variants(option, True, False)[0].shot
+    kick = Candidate(stroke, 5, "kick", 8)
+    search.score0(game.balls, kick)
+    assert kick.call == 2 and kick.value0 == WIN
+    missed = Candidate(clamp_shot(option.angle + math.pi / 2, 1.0, 0.0, 0.0), 5, "kick", 8)
+    search.score0(game.balls, missed)  # the 8 stays up: the call is left as it was
+    assert missed.call == 5 and missed.value0 != WIN
