@@ -76,7 +76,7 @@ def test_a_process_starting_while_another_holds_the_new_file_waits_for_it(tmp_pa
     finally:
         db.close()
         holder.close()
-    assert waits == [0.05]  # one refused try (after the driver's own 5 s wait), then in
+    assert waits == [0.05]  # one refused try (after the driver's own 5 s wait), then open
 
 
 @pytest.fixture
