@@ -93,10 +93,20 @@ class Database:
         self._ready.result()  # raises if the database cannot be opened or migrated
         self.closed = False
 
+    def _connect(self) -> Repository:
+        """Connect and migrate. On failure the connections are given back: the server
+        stops then, but a caller that goes on (a test, a tool) keeps no file open."""
+        repo = Repository(make_engine(self.url))
+        try:
+            self._attempt(_migrate, repo, self.start_retry)
+        except BaseException:
+            repo.close()
+            raise
+        return repo
+
     def _run(self) -> None:
         try:
-            repo = Repository(make_engine(self.url))
-            self._attempt(_migrate, repo, self.start_retry)
+            repo = self._connect()
         except BaseException as exc:
             self._ready.set_exception(exc)
             return

@@ -3,6 +3,7 @@ public before its members have seen it."""
 
 from __future__ import annotations
 
+import os
 import sqlite3
 import threading
 import time
@@ -11,6 +12,7 @@ from pathlib import Path
 
 import pytest
 from fastapi.testclient import TestClient
+from sqlalchemy.exc import OperationalError
 
 from server.app import create_app
 from server.config import Settings
@@ -77,6 +79,31 @@ def test_a_process_starting_while_another_holds_the_new_file_waits_for_it(tmp_pa
         db.close()
         holder.close()
     assert waits == [0.05]  # one refused try (after the driver's own 5 s wait), then open
+
+
+def test_a_file_that_cannot_be_migrated_is_not_left_open(tmp_path: Path):
+    """A store that fails to start gives its connections back: a caller that goes on (a
+    test, a tool) keeps no handle on the file."""
+    path = tmp_path / "pool.db"
+    other = sqlite3.connect(path)  # another program's file, with a table of our name
+    other.execute("CREATE TABLE matches (x)")
+    other.commit()
+    other.close()
+
+    def handles() -> int:
+        fds = Path("/proc/self/fd")
+        return sum(1 for fd in fds.iterdir() if _points_to(fd, path))
+
+    with pytest.raises(OperationalError, match="already exists"):
+        Database(path, start_retry=0.0)
+    assert handles() == 0
+
+
+def _points_to(fd: Path, path: Path) -> bool:
+    try:
+        return Path(os.readlink(fd)) == path
+    except OSError:  # closed since it was listed
+        return False
 
 
 @pytest.fixture
