@@ -179,14 +179,22 @@ class Search:
         self, pos: Position, before: BallSet, shot: Shot
     ) -> tuple[ShotFacts, Ruling, BallSet]:
         """Simulate `shot` and judge it: (what happened, the ruling, the table after)."""
+        facts, final = self._simulate(before, shot)
+        ruling, final = self._judge(pos, facts, final)
+        return facts, ruling, final
+
+    def _simulate(self, before: BallSet, shot: Shot) -> tuple[ShotFacts, BallSet]:
+        """One engine shot, counted against the budget: (what happened, where it stopped)."""
         self.sims += 1
         result = simulate(self.table, before, shot)
-        facts = shot_facts(before, result)
+        return shot_facts(before, result), result.final
+
+    def _judge(self, pos: Position, facts: ShotFacts, final: BallSet) -> tuple[Ruling, BallSet]:
+        """The rules' ruling on a simulated shot and the table after it (balls re-spotted)."""
         ruling = self.rules.judge(pos, facts)
-        final = result.final
         if ruling.spot:
             final = respot(self.table, final, ruling.spot)
-        return facts, ruling, final
+        return ruling, final
 
     def _made(self, ruling: Ruling, pocketed: tuple[int, ...]) -> bool:
         if ruling.winner is not None:
@@ -237,13 +245,16 @@ class Search:
         """The stroke's value without noise. A safety or kick on the 8 that drops it in
         another pocket than the one called would lose: it calls that pocket instead."""
         pos = self.pos_for(cand)
-        facts, ruling, final = self._play(pos, balls, cand.shot)
+        facts, stopped = self._simulate(balls, cand.shot)
+        ruling, final = self._judge(pos, facts, stopped)
         cand.value0 = self.value_of(pos, ruling, final, facts.pocketed)
         if cand.value0 == LOSS and cand.kind != "pot" and cand.call is not None:
             dropped = [facts.pockets[t] for t in self.targets(pos) if t in facts.pockets]
             if dropped and dropped[0] != cand.call:
-                cand.call = dropped[0]
-                self.score0(balls, cand)
+                cand.call = dropped[0]  # the same stroke, judged with that call
+                pos = self.pos_for(cand)
+                ruling, final = self._judge(pos, facts, stopped)
+                cand.value0 = self.value_of(pos, ruling, final, facts.pocketed)
 
     def score_noisy(self, balls: BallSet, cand: Candidate) -> None:
         pos = self.pos_for(cand)

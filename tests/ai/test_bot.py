@@ -372,6 +372,7 @@ def test_a_kick_that_drops_the_8_calls_the_pocket_it_drops_in(eight: Game) -> No
     kick = Candidate(stroke, 5, "kick", 8)
     search.score0(game.balls, kick)
     assert kick.call == 2 and kick.value0 == WIN
+    assert search.sims == 1  # judged again with the new call, not simulated again
     missed = Candidate(clamp_shot(option.angle + math.pi / 2, 1.0, 0.0, 0.0), 5, "kick", 8)
     search.score0(game.balls, missed)  # the 8 stays up: the call is left as it was
     assert missed.call == 5 and missed.value0 != WIN
