@@ -29,6 +29,7 @@ import argparse
 import asyncio
 import json
 import math
+import multiprocessing
 import statistics
 import sys
 import time
@@ -50,6 +51,7 @@ from server.ai.geometry import (
     pot_options,
     speed_for,
 )
+from server.ai.play import warm_up
 from server.codec import to_data
 from server.engine import CUE, TICK_HZ, Shot
 from server.rooms.computer import plan_turn
@@ -470,9 +472,15 @@ def calibrate(configs: int, seed: int) -> None:
 
 
 def _map(fn: Callable, jobs_args: list, jobs: int) -> list:
+    """`fn` over `jobs_args` in `jobs` processes. Each loads the compiled kernels and plans
+    once first (`warm_up`, as a room's planner does): otherwise the first plan of a worker
+    counted numba's compiling (14-18 s of CPU on a cold cache) in the plan time's maximum.
+    Spawned, like the room's planners, so a worker inherits nothing compiled."""
     if jobs <= 1:
+        warm_up()
         return [fn(a) for a in jobs_args]
-    with ProcessPoolExecutor(jobs) as pool:
+    spawn = multiprocessing.get_context("spawn")
+    with ProcessPoolExecutor(jobs, mp_context=spawn, initializer=warm_up) as pool:
         return list(pool.map(fn, jobs_args, chunksize=1))
 
 

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from bench.ai import main, sign_test
+from bench.ai import _map, main, sign_test
 
 
 def test_the_sign_test_is_the_two_sided_binomial_tail() -> None:
@@ -55,3 +55,14 @@ def test_the_carom_benchmark_finds_the_engine_corrected_aims_drop_more(
     assert corrected > raw + 20  # the secant of engine shots finds the aims that drop
     strokes = re.search(r"(\d+) strokes", report)
     assert strokes is not None and int(strokes[1]) > 30
+
+
+def _kernels_compiled(_: int) -> bool:
+    from server.ai import geometry
+
+    return bool(geometry._pot_kernel.signatures) and bool(geometry._open_kernel.signatures)
+
+
+def test_each_worker_loads_the_compiled_kernels_before_its_first_job() -> None:
+    """A worker's first plan would otherwise count numba's compiling in the plan time."""
+    assert _map(_kernels_compiled, [0, 1], jobs=2) == [True, True]
