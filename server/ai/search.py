@@ -167,21 +167,14 @@ class Search:
     ) -> tuple[float, bool, Ruling, BallSet]:
         """Simulate `shot` from `before` played in `pos`: (value, pocketed legally, ruling,
         table after)."""
-        facts, ruling, final = self._play(pos, before, shot)
+        facts, stopped = self._simulate(before, shot)
+        ruling, final = self._judge(pos, facts, stopped)
         return (
             self.value_of(pos, ruling, final, facts.pocketed),
             self._made(ruling, facts.pocketed),
             ruling,
             final,
         )
-
-    def _play(
-        self, pos: Position, before: BallSet, shot: Shot
-    ) -> tuple[ShotFacts, Ruling, BallSet]:
-        """Simulate `shot` and judge it: (what happened, the ruling, the table after)."""
-        facts, final = self._simulate(before, shot)
-        ruling, final = self._judge(pos, facts, final)
-        return facts, ruling, final
 
     def _simulate(self, before: BallSet, shot: Shot) -> tuple[ShotFacts, BallSet]:
         """One engine shot, counted against the budget: (what happened, where it stopped)."""
