@@ -17,7 +17,10 @@ from .geometry import pockets_of
 from .levels import Level
 
 THROW_STEP = math.radians(0.05)  # the aim step of the secant that allows for the throw
-THROW_MAX = math.radians(1.0)  # larger corrections are not trusted (a kiss, a near miss)
+# An object ball thrown further off than this was not thrown (a kiss, a near miss): no
+# correction. Bounded on the ball's error, not on the turn of the cue, which is larger the
+# closer the cue ball is (from 0.1 m a 2.9-degree throw needs a turn of 1.45 degrees).
+THROW_MAX = math.radians(5.0)
 THROW_LOOK = 0.04  # s after the contact at which the object ball's direction is read
 # The secant on a carom's aim (`aim_carom`): its first step, the engine shots it may take,
 # the largest correction trusted and a miss small enough to stop at.
@@ -78,9 +81,9 @@ def aim_for_throw(
     slope = math.remainder(second - first, 2 * math.pi) / THROW_STEP
     if abs(slope) < 1.0:  # the object ball hardly follows the aim: not a clean hit
         return shot, 2
-    step = -err / slope
-    if abs(step) > THROW_MAX:
+    if abs(err) > THROW_MAX:
         return shot, 2
+    step = -err / slope
     return clamp_shot(shot.angle + step, shot.speed, *shot.tip), 2
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import pytest
@@ -305,18 +306,43 @@ def test_with_few_pots_on_the_pro_tries_finer_strokes_on_each(eight: Game) -> No
         assert set(per_pot.values()) == {want}, (bot.level.name, per_pot)
 
 
-def test_a_cut_is_aimed_to_allow_for_the_throw(eight: Game) -> None:
-    """A slow 30-degree cut of 0.8 m into a corner: on the ghost-ball line the throw sends
-    the object ball wide of the pocket's centre and it drops in about two noisy strokes
-    of three; with the aim turned for the throw it leaves at the centre and drops far
-    more often under the same noise."""
+@dataclass
+class ThrownCut:
+    """A slow 30-degree cut of 0.8 m into corner 3, its softest centre-ball stroke on the
+    ghost-ball line and the same stroke aimed for the throw, with 60 noisy draws."""
+
+    game: Game
+    ghost_line: Shot
+    aimed: Shot
+    noise: np.ndarray
+
+    def miss(self, shot: Shot) -> float:
+        """Degrees between the object ball's departure and the line to the pocket."""
+        px, py = pocket_aim(3)
+        ox, oy = self.game.balls.position_of(1)
+        leaves = departure(TABLE, self.game.balls, shot, 1)
+        assert leaves is not None
+        return abs(math.degrees(math.remainder(leaves - math.atan2(py - oy, px - ox), 2 * math.pi)))
+
+    def pots(self, shot: Shot) -> int:
+        """Of the noisy draws, how many drop the ball under the pro's error."""
+        balls, pro = self.game.balls, BY_NAME["pro"]
+        runs = (simulate(TABLE, balls, perturb(shot, row, pro)) for row in self.noise)
+        return sum(1 in shot_facts(balls, run).pocketed for run in runs)
+
+
+def thrown_cut(eight: Game, cue_distance: float) -> ThrownCut:
+    """`ThrownCut` with the cue ball `cue_distance` m from the ghost ball."""
     px, py = pocket_aim(3)
     away = math.atan2(TABLE.width / 2 - py, TABLE.length / 2 - px)
     obj = (px + 0.8 * math.cos(away), py + 0.8 * math.sin(away))
     line = away + math.pi  # object ball to pocket
     ghost = (obj[0] - 2 * R * math.cos(line), obj[1] - 2 * R * math.sin(line))
     approach = line + math.radians(30)
-    cue = (ghost[0] - 0.6 * math.cos(approach), ghost[1] - 0.6 * math.sin(approach))
+    cue = (
+        ghost[0] - cue_distance * math.cos(approach),
+        ghost[1] - cue_distance * math.sin(approach),
+    )
     game = set_table(eight, {0: cue, 1: obj, 9: (0.4, 0.3), 8: (0.5, 1.0)}, groups=SOLIDS_STRIPES)
     pro = BY_NAME["pro"]
     noise = np.random.default_rng(1).standard_normal((60, 4))
@@ -325,23 +351,32 @@ def test_a_cut_is_aimed_to_allow_for_the_throw(eight: Game) -> None:
     ghost_line = search._variants(option, False, False)[0]  # the softest centre-ball stroke
     cand = Candidate(ghost_line.shot, None, "pot", 1, 3)
     search.allow_for_throw(game.balls, cand)
-    want = math.atan2(py - obj[1], px - obj[0])
+    return ThrownCut(game, ghost_line.shot, cand.shot, noise)
 
-    def miss(shot: Shot) -> float:
-        leaves = departure(TABLE, game.balls, shot, 1)
-        assert leaves is not None
-        return abs(math.degrees(math.remainder(leaves - want, 2 * math.pi)))
 
-    def pots(shot: Shot) -> int:
-        balls = game.balls
-        runs = (simulate(TABLE, balls, perturb(shot, row, pro)) for row in noise)
-        return sum(1 in shot_facts(balls, run).pocketed for run in runs)
-
-    assert miss(ghost_line.shot) > 1.0  # degrees: the throw of a slow cut
-    assert miss(cand.shot) < 0.2
-    assert cand.shot.speed == ghost_line.shot.speed and cand.shot.tip == ghost_line.shot.tip
-    before, after = pots(ghost_line.shot), pots(cand.shot)
+def test_a_cut_is_aimed_to_allow_for_the_throw(eight: Game) -> None:
+    """On the ghost-ball line the throw sends the object ball wide of the pocket's centre
+    and it drops in about two noisy strokes of three; with the aim turned for the throw it
+    leaves at the centre and drops far more often under the same noise."""
+    cut = thrown_cut(eight, 0.6)
+    assert cut.miss(cut.ghost_line) > 1.0  # degrees: the throw of a slow cut
+    assert cut.miss(cut.aimed) < 0.2
+    assert cut.aimed.speed == cut.ghost_line.speed and cut.aimed.tip == cut.ghost_line.tip
+    before, after = cut.pots(cut.ghost_line), cut.pots(cut.aimed)
     assert before < 45 and after >= before + 8, (before, after)
+
+
+def test_a_cut_from_close_by_is_aimed_for_the_throw_too(eight: Game) -> None:
+    """The cue ball 0.1 m from the ghost ball (ball in hand puts it about this close): it
+    still slides at the contact, so the throw is near 3 degrees, and the closer the cue
+    ball the less the object ball follows a turn of the cue, so the cue must turn over a
+    degree. A bound on that turn left such pots uncorrected, and they dropped 3 times in
+    60; the bound is now on the object ball's error."""
+    cut = thrown_cut(eight, 0.1)
+    assert cut.miss(cut.ghost_line) > 2.0
+    assert cut.miss(cut.aimed) < 0.3
+    before, after = cut.pots(cut.ghost_line), cut.pots(cut.aimed)
+    assert before < 10 and after >= 55, (before, after)
 
 
 def test_a_plan_never_runs_more_simulations_than_its_budget(eight: Game) -> None:
