@@ -370,8 +370,8 @@ def test_a_cut_from_close_by_is_aimed_for_the_throw_too(eight: Game) -> None:
     """The cue ball 0.1 m from the ghost ball (ball in hand puts it about this close): it
     still slides at the contact, so the throw is near 3 degrees, and the closer the cue
     ball the less the object ball follows a turn of the cue, so the cue must turn over a
-    degree. A bound on that turn left such pots uncorrected, and they dropped 3 times in
-    60; the bound is now on the object ball's error."""
+    degree. What marks a kiss or a near miss is the object ball's error, not that turn;
+    uncorrected, the pot drops about 3 times in 60."""
     cut = thrown_cut(eight, 0.1)
     assert cut.miss(cut.ghost_line) > 2.0
     assert cut.miss(cut.aimed) < 0.3
