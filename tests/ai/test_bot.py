@@ -334,9 +334,8 @@ class ThrownCut:
 def thrown_cut(eight: Game, cue_distance: float) -> ThrownCut:
     """`ThrownCut` with the cue ball `cue_distance` m from the ghost ball."""
     px, py = pocket_aim(3)
-    away = math.atan2(TABLE.width / 2 - py, TABLE.length / 2 - px)
-    obj = (px + 0.8 * math.cos(away), py + 0.8 * math.sin(away))
-    line = away + math.pi  # object ball to pocket
+    obj, _ = straight_line(3, 0.8, 0.0)
+    line = math.atan2(py - obj[1], px - obj[0])  # object ball to pocket
     ghost = (obj[0] - 2 * R * math.cos(line), obj[1] - 2 * R * math.sin(line))
     approach = line + math.radians(30)
     cue = (
