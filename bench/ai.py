@@ -55,7 +55,7 @@ from server.ai.play import warm_up
 from server.codec import to_data
 from server.engine import CUE, TICK_HZ, Shot
 from server.rooms.computer import plan_turn
-from server.rules import ANYWHERE, Game
+from server.rules import ANYWHERE, Game, Outcome
 from server.rules.placement import can_place
 
 MAX_TURNS = 200  # a game longer than this is stopped and counted as a draw
@@ -197,21 +197,54 @@ class Counts:
     safeties: dict[str, int] = field(default_factory=dict)
     times: dict[str, list[float]] = field(default_factory=dict)  # wall clock per plan
     cpu: dict[str, list[float]] = field(default_factory=dict)  # CPU time per plan (one core)
+    # Per pot tried: the chance its plan gave it (`Turn.chance`) and whether it dropped.
+    chances: dict[str, list[tuple[float, bool]]] = field(default_factory=dict)
+    ends: dict[str, int] = field(default_factory=dict)  # runouts: how each lost rack ended
 
     def add(self, other: Counts) -> None:
         self.games += other.games
-        for name in ("shots", "pots", "pot_tries", "fouls", "safeties"):
+        for name in ("shots", "pots", "pot_tries", "fouls", "safeties", "ends"):
             mine, theirs = getattr(self, name), getattr(other, name)
             for k, v in theirs.items():
                 mine[k] = mine.get(k, 0) + v
-        for k, v in other.times.items():
-            self.times.setdefault(k, []).extend(v)
-        for k, v in other.cpu.items():
-            self.cpu.setdefault(k, []).extend(v)
+        for name in ("times", "cpu", "chances"):
+            mine, theirs = getattr(self, name), getattr(other, name)
+            for k, v in theirs.items():
+                mine.setdefault(k, []).extend(v)
 
     def bump(self, table: str, who: str, by: int = 1) -> None:
         d = getattr(self, table)
         d[who] = d.get(who, 0) + by
+
+    def tally(self, who: str, turn: Turn, outcome: Outcome, made: bool) -> None:
+        """One shot of `who`: `made` when it was a pot that dropped legally (or won)."""
+        self.bump("shots", who)
+        if turn.kind in ("safety", "kick"):
+            self.bump("safeties", who)
+        if turn.kind == "pot":
+            self.bump("pot_tries", who)
+            self.bump("pots", who, int(made))
+            if turn.chance is not None:
+                self.chances.setdefault(who, []).append((turn.chance, made))
+        if outcome.fouls:
+            self.bump("fouls", who)
+
+
+# The bands of `Turn.chance` the pots made are counted in (the last: every trial dropped).
+CHANCE_BANDS = ((0.0, 0.5), (0.5, 0.8), (0.8, 0.9), (0.9, 1.0), (1.0, 1.0))
+SURE = 0.9  # a pot planned at least this likely that misses ends a rack as a "sure" miss
+
+
+def end_of_rack(turn: Turn, outcome: Outcome, lost: bool) -> str:
+    """How a runout ended that did not clear the table."""
+    if lost:
+        return "lost on the 8"
+    if outcome.fouls:
+        return "fouled"
+    if turn.kind == "pot":
+        sure = turn.chance is not None and turn.chance >= SURE
+        return "missed a sure pot" if sure else "missed a harder pot"
+    return "played safe"
 
 
 def make_player(name: str, seed: int) -> Player:
@@ -240,17 +273,7 @@ def play_game(
         outcome, _ = play_turn(game, seat, turn, player, rng)
         if outcome is None:
             continue
-        counts.bump("shots", who)
-        if turn.kind in ("safety", "kick"):
-            counts.bump("safeties", who)
-        if turn.kind == "pot":
-            counts.bump("pot_tries", who)
-            if (outcome.continues and not outcome.fouls and outcome.pocketed) or (
-                outcome.winner == seat
-            ):
-                counts.bump("pots", who)
-        if outcome.fouls:
-            counts.bump("fouls", who)
+        counts.tally(who, turn, outcome, made_pot(outcome, seat))
     del tags
     return (game.winner if game.over else None), counts
 
@@ -286,20 +309,21 @@ def runout(seed: int) -> tuple[bool, Counts]:
         counts.cpu.setdefault(top, []).append(time.process_time() - c0)
         outcome, _ = play_turn(game, 1, plan, bot, rng)
         assert outcome is not None
-        counts.bump("shots", top)
-        if plan.kind in ("safety", "kick"):
-            counts.bump("safeties", top)
-        if plan.kind == "pot":
-            counts.bump("pot_tries", top)
-            if (outcome.continues and not outcome.fouls and outcome.pocketed) or game.winner == 1:
-                counts.bump("pots", top)
-        if outcome.fouls:
-            counts.bump("fouls", top)
-        if game.over:
-            return game.winner == 1, counts
-        if game.turn != 1 or game.decision is not None:
+        counts.tally(top, plan, outcome, made_pot(outcome, 1))
+        if game.over and game.winner == 1:
+            return True, counts
+        if game.over or game.turn != 1 or game.decision is not None:
+            counts.bump("ends", end_of_rack(plan, outcome, game.over))
             return False, counts
+    counts.bump("ends", "out of turns")
     return False, counts
+
+
+def made_pot(outcome: Outcome, seat: int) -> bool:
+    """A ball of the shooter's dropped and it kept the table, or it won."""
+    return bool(outcome.continues and not outcome.fouls and outcome.pocketed) or (
+        outcome.winner == seat
+    )
 
 
 # --- the event loop while the computer thinks --------------------------------------------
@@ -484,6 +508,21 @@ def _map(fn: Callable, jobs_args: list, jobs: int) -> list:
         return list(pool.map(fn, jobs_args, chunksize=1))
 
 
+def report_chances(counts: Counts, who: str) -> None:
+    """The chance `who`'s plans gave their pots against the share that dropped, by band:
+    a search that picks the best of many noisy estimates overrates what it picks."""
+    tried = counts.chances.get(who, [])
+    if not tried:
+        return
+    parts = []
+    for lo, hi in CHANCE_BANDS:
+        band = [made for chance, made in tried if lo <= chance < hi or chance == hi == lo]
+        if band:
+            name = "100" if lo == hi else f"{100 * lo:.0f}-{100 * hi:.0f}"
+            parts.append(f"{name} %: {sum(band)}/{len(band)}")
+    print(f"    {who:>9}: pots made by the chance planned, {'; '.join(parts)}")
+
+
 def report_counts(counts: Counts, names: list[str]) -> None:
     for who in names:
         shots = counts.shots.get(who, 0)
@@ -522,6 +561,7 @@ def match(kind: str, strong: str, weak: str, games: int, seed: int, jobs: int) -
     print(f"  {kind}: {strong} vs {weak}: {strong} wins {share(wins, games)}", end="")
     print(f"; {stopped} stopped at {MAX_TURNS} turns; {time.perf_counter() - t0:.0f} s")
     report_counts(total, [strong, weak])
+    report_chances(total, strong)
     return won
 
 
@@ -559,6 +599,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"runouts ({LEVELS[-1]}, ball in hand after a break, open 8-ball table):")
         print(f"  cleared and won {share(cleared, len(seeds))}; {time.perf_counter() - t0:.0f} s")
         report_counts(total, [LEVELS[-1]])
+        report_chances(total, LEVELS[-1])
+        ends = sorted(total.ends.items(), key=lambda kv: -kv[1])
+        print("  racks not cleared: " + (", ".join(f"{n} {why}" for why, n in ends) or "none"))
     if "greedy" in parts:
         print("against the greedy baseline (8-ball, alternating breaks):")
         won = match("eight_ball", LEVELS[-1], "greedy", args.games, args.seed, args.jobs)

@@ -9,7 +9,9 @@ from pathlib import Path
 
 import pytest
 
-from bench.ai import _map, main, sign_test
+from bench.ai import Counts, _map, end_of_rack, main, report_chances, sign_test
+from server.ai import Turn
+from server.rules import Foul, Outcome
 
 
 def test_the_sign_test_is_the_two_sided_binomial_tail() -> None:
@@ -66,3 +68,47 @@ def _kernels_compiled(_: int) -> bool:
 def test_each_worker_loads_the_compiled_kernels_before_its_first_job() -> None:
     """A worker's first plan would otherwise count numba's compiling in the plan time."""
     assert _map(_kernels_compiled, [0, 1], jobs=2) == [True, True]
+
+
+def _outcome(pocketed: tuple[int, ...] = (), foul: bool = False, over: bool = False) -> Outcome:
+    fouls = (Foul("scratch", "the cue ball went in"),) if foul else ()
+    keeps = bool(pocketed) and not foul and not over
+    return Outcome(1, pocketed, fouls, keeps, 1 if keeps else 0, None, over, None, None, "")
+
+
+def test_a_lost_rack_is_put_down_to_how_it_ended() -> None:
+    sure, hard = Turn(kind="pot", chance=0.95), Turn(kind="pot", chance=0.6)
+    assert end_of_rack(sure, _outcome(), lost=False) == "missed a sure pot"
+    assert end_of_rack(hard, _outcome(), lost=False) == "missed a harder pot"
+    assert end_of_rack(Turn(kind="safety"), _outcome(), lost=False) == "played safe"
+    assert end_of_rack(Turn(kind="kick"), _outcome((3,)), lost=False) == "played safe"
+    assert end_of_rack(sure, _outcome((3,), foul=True), lost=False) == "fouled"
+    assert end_of_rack(sure, _outcome((8,), over=True), lost=True) == "lost on the 8"
+
+
+def test_pots_are_counted_by_the_chance_their_plan_gave_them(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    counts, more = Counts(), Counts()
+    for chance, made in ((1.0, True), (1.0, True), (0.95, False), (0.93, True), (0.3, False)):
+        counts.tally("pro", Turn(kind="pot", chance=chance), _outcome(), made)
+    more.tally("pro", Turn(kind="pot", chance=1.0), _outcome(), False)
+    more.tally("pro", Turn(kind="safety"), _outcome(), False)
+    counts.add(more)
+    assert (counts.pot_tries["pro"], counts.pots["pro"], counts.safeties["pro"]) == (6, 3, 1)
+    report_chances(counts, "pro")
+    line = capsys.readouterr().out
+    assert "0-50 %: 0/1; 90-100 %: 1/2; 100 %: 2/3" in line
+
+
+def test_the_runouts_report_how_every_rack_not_cleared_ended(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    main(["--runouts", "3", "--seed", "3", "--only", "runouts"])
+    report = capsys.readouterr().out
+    cleared = re.search(r"cleared and won (\d+)/3", report)
+    ends = re.search(r"racks not cleared: (.*)", report)
+    assert cleared is not None and ends is not None, report
+    counted = [int(part.split()[0]) for part in ends[1].split(", ") if part != "none"]
+    assert sum(counted) == 3 - int(cleared[1])
+    assert "pots made by the chance planned" in report
