@@ -16,6 +16,11 @@ Every shot is played with the executing player's noise (`Bot.execute`); the gree
 baseline plays with the top level's noise (FastFiz: sigma aim 0.125 deg, speed 0.075 m/s,
 tip 0.5 mm). Breaks alternate. Shares are printed with a 95 % Wilson interval.
 
+With the counts per game the top level's pots are counted by the chance its plan gave
+them (`Turn.chance`, the share of its noisy trials that dropped), and the runouts say how
+each rack not cleared ended (a missed pot planned at 90 % or more, a harder one, a safety,
+a foul, the 8 lost).
+
 `--save` writes each rack's and game's outcome by seed; `--paired` compares this run with
 such a file seed by seed. A seed gives the same rack and the same noise draws, so two
 versions of the search differ only where their play differs: the sign test on the seeds
