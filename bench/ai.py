@@ -221,8 +221,9 @@ class Counts:
         d = getattr(self, table)
         d[who] = d.get(who, 0) + by
 
-    def tally(self, who: str, turn: Turn, outcome: Outcome, made: bool) -> None:
-        """One shot of `who`: `made` when it was a pot that dropped legally (or won)."""
+    def tally(self, who: str, turn: Turn, outcome: Outcome) -> None:
+        """One shot of `who`, as the rules judged it (`outcome`)."""
+        made = made_pot(outcome)
         self.bump("shots", who)
         if turn.kind in ("safety", "kick"):
             self.bump("safeties", who)
@@ -278,7 +279,7 @@ def play_game(
         outcome, _ = play_turn(game, seat, turn, player, rng)
         if outcome is None:
             continue
-        counts.tally(who, turn, outcome, made_pot(outcome, seat))
+        counts.tally(who, turn, outcome)
     del tags
     return (game.winner if game.over else None), counts
 
@@ -314,7 +315,7 @@ def runout(seed: int) -> tuple[bool, Counts]:
         counts.cpu.setdefault(top, []).append(time.process_time() - c0)
         outcome, _ = play_turn(game, 1, plan, bot, rng)
         assert outcome is not None
-        counts.tally(top, plan, outcome, made_pot(outcome, 1))
+        counts.tally(top, plan, outcome)
         if game.over and game.winner == 1:
             return True, counts
         if game.over or game.turn != 1 or game.decision is not None:
@@ -324,10 +325,10 @@ def runout(seed: int) -> tuple[bool, Counts]:
     return False, counts
 
 
-def made_pot(outcome: Outcome, seat: int) -> bool:
+def made_pot(outcome: Outcome) -> bool:
     """A ball of the shooter's dropped and it kept the table, or it won."""
     return bool(outcome.continues and not outcome.fouls and outcome.pocketed) or (
-        outcome.winner == seat
+        outcome.winner == outcome.shooter
     )
 
 

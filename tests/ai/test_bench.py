@@ -96,10 +96,12 @@ def test_pots_are_counted_by_the_chance_their_plan_gave_them(
     capsys: pytest.CaptureFixture[str],
 ) -> None:
     counts, more = Counts(), Counts()
-    for chance, made in ((1.0, True), (1.0, True), (0.95, False), (0.93, True), (0.3, False)):
-        counts.tally("pro", Turn(kind="pot", chance=chance), _outcome(), made)
-    more.tally("pro", Turn(kind="pot", chance=1.0), _outcome(), False)
-    more.tally("pro", Turn(kind="safety"), _outcome(), False)
+    dropped, missed = _outcome((3,)), _outcome()
+    for chance, outcome in ((1.0, dropped), (1.0, dropped), (0.95, missed), (0.93, dropped)):
+        counts.tally("pro", Turn(kind="pot", chance=chance), outcome)
+    counts.tally("pro", Turn(kind="pot", chance=0.3), missed)
+    more.tally("pro", Turn(kind="pot", chance=1.0), missed)
+    more.tally("pro", Turn(kind="safety"), missed)
     counts.add(more)
     assert (counts.pot_tries["pro"], counts.pots["pro"], counts.safeties["pro"]) == (6, 3, 1)
     report_chances(counts, "pro")
