@@ -82,6 +82,14 @@ class Server:
     def output(self) -> str:
         return self.log.read_text(errors="replace")
 
+    def wait_for_output(self, *lines: str, within: float) -> None:
+        """Wait until every one of `lines` is in the log. Lines logged by different tasks or
+        threads come in no fixed order, so each is waited for, not one after the other."""
+        deadline = time.monotonic() + within
+        while missing := [line for line in lines if line not in self.output()]:
+            assert time.monotonic() < deadline, f"not logged: {missing}\n{self.output()[-3000:]}"
+            time.sleep(0.1)
+
 
 @dataclass
 class ServerSet:
