@@ -13,6 +13,8 @@ from pathlib import Path
 import httpx
 import pytest
 
+from server.store import Database
+from server.store.players import PlayerRows
 from tests.cluster.servers import ServerSet
 from tests.cluster.sockets import connect, send, until
 from tests.support.games import BREAK, EIGHT_BALL, shoot_message
@@ -123,6 +125,24 @@ def test_leaving_and_the_computer_offer_work_on_any_process(
             server.stop()
 
 
+def stored(database_url: str, room_id: str, within: float = 20.0) -> None:
+    """Wait until the store holds what a process taking the room over reads: the room with
+    both seats and its match, and the ranked record. The owner queues those writes, and a
+    kill -9 loses whatever is still queued."""
+    db = Database(database_url)
+    try:
+        deadline = time.monotonic() + within
+        while True:
+            snap = db.run(lambda repo: repo.room(room_id))
+            ranked = db.run(lambda repo: PlayerRows(repo).ranked(room_id))
+            if snap and ranked and all(snap.data["seats"]) and snap.data["match_id"] is not None:
+                return
+            assert time.monotonic() < deadline, f"room {room_id} not stored: {snap}, {ranked}"
+            time.sleep(0.1)
+    finally:
+        db.close()
+
+
 def owner_moved(base: str, room_id: str, old_url: str, within: float = 20.0) -> str:
     """Ask `base` about the room until another process plays it: its new `ws_url`."""
     deadline = time.monotonic() + within
@@ -156,7 +176,8 @@ def test_a_ranked_room_taken_over_after_its_server_died_is_still_rated(
     postgres: PostgresServer,  # noqa: F811
     tmp_path: Path,
 ):
-    settings = {"database_url": postgres.create_database(), "rack_seed": EIGHT_BALL}
+    database_url = postgres.create_database()
+    settings = {"database_url": database_url, "rack_seed": EIGHT_BALL}
     group = ServerSet.start(2, redis.url, tmp_path, settings)
     try:
         a, b = group.all
@@ -169,7 +190,7 @@ def test_a_ranked_room_taken_over_after_its_server_died_is_still_rated(
             old_url = httpx.get(f"{a.url}/api/rooms/{room_id}", timeout=10).json()["ws_url"]
             owner = group.by_url(old_url)
             (survivor,) = group.others(owner)
-            time.sleep(1.0)  # the room's records are written (queued writes, then kill -9)
+            stored(database_url, room_id)  # then kill -9
             owner.kill()
             new_url = owner_moved(survivor.url, room_id, old_url)
             tokens = {s["seat"]: s["token"] for s in (seat_a, seat_b)}
