@@ -5,17 +5,14 @@ from __future__ import annotations
 from typing import Annotated, Any
 
 from fastapi import APIRouter, HTTPException, Query, Request, status
-from pydantic import BaseModel, Field
 
 from server.ai import LEVELS
 from server.cluster import Unreachable
 from server.protocol import LIMITS, Limits
-from server.rooms import ActionError
-from server.rooms.computer import HINT_LEVEL
-from server.rooms.computer import hint as plan_hint
 
 from . import routing
 from .deps import ClientId, ClusterDep, Quotas, Registry, SettingsDep
+from .hints import CALL_TIMEOUT, Hint, HintRequest, hint_for
 from .identity import player_seat_key
 from .players import remember_seat
 from .ranked_friends import NEEDS_AGREEMENT, asking_player, check_create, seat_agreed, tables_of
@@ -210,29 +207,6 @@ async def join_room(
     return joined
 
 
-class HintRequest(BaseModel):
-    token: str = Field(min_length=1, max_length=200, description="the seat's token")
-
-
-class Hint(BaseModel):
-    """The strongest level's plan for the shot: what it would play, not played."""
-
-    level: str  # the level that planned it (the strongest)
-    kind: str  # "pot", "safety", "kick", "break" or "push"
-    place: tuple[float, float] | None  # where it would put the cue ball (ball in hand)
-    call: int | None  # the pocket it would call (8-ball's 8)
-    angle: float  # cue direction, radians
-    speed: float  # cue-ball speed, m/s
-    tip: tuple[float, float]  # (side, height) of the cue tip, fractions of the radius
-    target: int | None  # the ball it pots (or plays at)
-    pocket: int | None  # the pocket it plays for
-    chance: float | None  # the share of its noisy trials that pocketed a ball legally
-    via: str | None = None  # a pot's route: "direct", "bank" (off a cushion), "combo", "carom"
-
-
-_HINT_STATUS = {"bad_token": 403, "not_practice": 409, "not_your_turn": 409, "hint_pending": 429}
-
-
 @router.post(
     "/api/rooms/{room_id}/hint",
     response_model=Hint,
@@ -240,38 +214,21 @@ _HINT_STATUS = {"bad_token": 403, "not_practice": 409, "not_your_turn": 409, "hi
     tags=["rooms"],
 )
 async def hint(
-    room_id: str, body: HintRequest, registry: Registry, settings: SettingsDep
+    room_id: str, body: HintRequest, registry: Registry, settings: SettingsDep, cluster: ClusterDep
 ) -> dict[str, Any]:
     """Practice: "Show me a shot". The strongest computer level plans the player's shot
-    (off the event loop) and the plan comes back without being played. 403 for a token that
-    is not this table's, 409 when the table is not practice or not at rest for the player,
-    429 while a hint for the table is being planned."""
+    (off the event loop, on the server that plays the table) and the plan comes back
+    without being played. 403 for a token that is not this table's, 409 when the table is
+    not practice or not at rest for the player, 429 while a hint for the table is being
+    planned."""
     live = registry.get(room_id)
+    if live is None and cluster is not None:
+        node = await routing.room_owner(cluster, room_id)
+        args = {"room_id": room_id, "token": body.token}
+        return await routing.forward(cluster, node, "hint", args, timeout=CALL_TIMEOUT)
     if live is None:
         raise HTTPException(404, {"code": "unknown_room", "message": "No such room."})
-    try:
-        turn = await plan_hint(live.room, body.token, settings.computer_workers)
-    except ActionError as exc:
-        raise HTTPException(
-            _HINT_STATUS.get(exc.code, 409), {"code": exc.code, "message": exc.message}
-        ) from None
-    if turn.shot is None:  # a decision: practice has none, but say so plainly if it comes
-        raise HTTPException(
-            409, {"code": "not_your_turn", "message": "There is a decision to make, not a shot."}
-        )
-    return {
-        "level": HINT_LEVEL,
-        "kind": turn.kind or "pot",
-        "place": turn.place,
-        "call": turn.call,
-        "angle": turn.shot.angle,
-        "speed": turn.shot.speed,
-        "tip": turn.shot.tip,
-        "target": turn.target,
-        "pocket": turn.pocket,
-        "chance": turn.chance,
-        "via": turn.via,
-    }
+    return await hint_for(live, body.token, settings.computer_workers)
 
 
 __all__ = ["RoomSummary", "router"]

@@ -1,4 +1,4 @@
-"""Room requests that must run where the room is played: open, show, join.
+"""Room requests that must run where the room is played: open, show, join, a hint.
 
 One process: they run here. Cluster mode: a new room goes to the least loaded live process,
 and showing or joining a room runs on its owner (the holder of its lease), called through
@@ -20,6 +20,7 @@ from server.config import Settings
 from server.players import seat_token
 from server.rooms import ActionError, LiveRoom, RoomRegistry
 
+from .hints import hint_for
 from .schemas import CreateRoom
 
 log = logging.getLogger(__name__)
@@ -110,10 +111,13 @@ def join(live: LiveRoom, name: str, base: str, key: str | None = None) -> dict[s
     }
 
 
-async def forward(cluster: Cluster, node: str, op: str, args: dict[str, Any]) -> dict[str, Any]:
-    """Run `op` on process `node`; its refusal is raised here as it was made there."""
+async def forward(
+    cluster: Cluster, node: str, op: str, args: dict[str, Any], timeout: float | None = None
+) -> dict[str, Any]:
+    """Run `op` on process `node`; its refusal is raised here as it was made there.
+    `timeout`: for a call that takes longer than the cluster's usual one (a plan)."""
     try:
-        reply = await cluster.inbox.call(node, op, args)
+        reply = await cluster.inbox.call(node, op, args, timeout)
     except Unreachable:
         raise HTTPException(503, MOVING) from None
     if reply.status >= 400:
@@ -172,4 +176,11 @@ def install(app: FastAPI, cluster: Cluster) -> None:
 
         return await answer(run)
 
-    cluster.inbox.handlers.update({"create": create, "show": show_here, "join": join_here})
+    async def hint_here(args: dict[str, Any]) -> tuple[int, dict[str, Any]]:
+        return await answer(
+            lambda: hint_for(local(args["room_id"]), args["token"], settings.computer_workers)
+        )
+
+    cluster.inbox.handlers.update(
+        {"create": create, "show": show_here, "join": join_here, "hint": hint_here}
+    )

@@ -52,9 +52,11 @@ class Inbox:
         with contextlib.suppress(Exception):
             await self._pubsub.aclose()
 
-    async def call(self, node: str, op: str, args: dict[str, Any]) -> Forwarded:
+    async def call(
+        self, node: str, op: str, args: dict[str, Any], timeout: float | None = None
+    ) -> Forwarded:
         """Run handler `op` on process `node` (here when it is this one); raises
-        `Unreachable` when no answer comes within the timeout."""
+        `Unreachable` when no answer comes within `timeout` (else the inbox's)."""
         if node == self.node:
             status, body = await self.handlers[op](args)
             return Forwarded(status, body)
@@ -65,7 +67,7 @@ class Inbox:
             message = {"kind": "call", "id": call_id, "from": self.node, "op": op, "args": args}
             if not await self.send(node, message):
                 raise Unreachable(node)
-            return await asyncio.wait_for(future, self.timeout)
+            return await asyncio.wait_for(future, timeout or self.timeout)
         except (TimeoutError, RedisError, OSError):
             raise Unreachable(node) from None
         finally:

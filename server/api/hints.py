@@ -1,0 +1,67 @@
+"""Practice's "Show me a shot": the strongest level's plan for the player's shot, as the
+API returns it. It runs where the table is played (routing forwards it to the room's owner
+in cluster mode), since the planner needs the live table."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from fastapi import HTTPException
+from pydantic import BaseModel, Field
+
+from server.rooms import ActionError, LiveRoom
+from server.rooms.computer import HINT_LEVEL
+from server.rooms.computer import hint as plan_hint
+
+# A call for a hint to the room's owner waits this long: a plan takes up to about 3 s of
+# CPU, and the owner's planner processes may be busy with the computer's turns first.
+CALL_TIMEOUT = 30.0
+_STATUS = {"bad_token": 403, "not_practice": 409, "not_your_turn": 409, "hint_pending": 429}
+
+
+class HintRequest(BaseModel):
+    token: str = Field(min_length=1, max_length=200, description="the seat's token")
+
+
+class Hint(BaseModel):
+    """The strongest level's plan for the shot: what it would play, not played."""
+
+    level: str  # the level that planned it (the strongest)
+    kind: str  # "pot", "safety", "kick", "break" or "push"
+    place: tuple[float, float] | None  # where it would put the cue ball (ball in hand)
+    call: int | None  # the pocket it would call (8-ball's 8)
+    angle: float  # cue direction, radians
+    speed: float  # cue-ball speed, m/s
+    tip: tuple[float, float]  # (side, height) of the cue tip, fractions of the radius
+    target: int | None  # the ball it pots (or plays at)
+    pocket: int | None  # the pocket it plays for
+    chance: float | None  # the share of its noisy trials that pocketed a ball legally
+    via: str | None = None  # a pot's route: "direct", "bank" (off a cushion), "combo", "carom"
+
+
+async def hint_for(live: LiveRoom, token: str, workers: int) -> dict[str, Any]:
+    """The `Hint` for the seat of `token` (planned off the event loop); a refusal is raised
+    as the HTTP error the endpoint answers with."""
+    try:
+        turn = await plan_hint(live.room, token, workers)
+    except ActionError as exc:
+        raise HTTPException(
+            _STATUS.get(exc.code, 409), {"code": exc.code, "message": exc.message}
+        ) from None
+    if turn.shot is None:  # a decision: practice has none, but say so plainly if it comes
+        raise HTTPException(
+            409, {"code": "not_your_turn", "message": "There is a decision to make, not a shot."}
+        )
+    return {
+        "level": HINT_LEVEL,
+        "kind": turn.kind or "pot",
+        "place": turn.place,
+        "call": turn.call,
+        "angle": turn.shot.angle,
+        "speed": turn.shot.speed,
+        "tip": turn.shot.tip,
+        "target": turn.target,
+        "pocket": turn.pocket,
+        "chance": turn.chance,
+        "via": turn.via,
+    }
