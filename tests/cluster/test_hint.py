@@ -1,6 +1,6 @@
-""""Show me a shot" in a cluster: the page asks whichever server the load balancer picks,
-and the hint is planned by the server that plays the table (the planner needs the live
-table), its answers and refusals passed back unchanged."""
+"""The hint ("Show me a shot") in a cluster: the page asks whichever server the load
+balancer picks, and the hint is planned by the server that plays the table (the planner
+needs the live table), its answers and refusals passed back unchanged."""
 
 from __future__ import annotations
 
