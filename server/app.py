@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Callable, Iterable
 from pathlib import Path
 
 from fastapi import FastAPI, HTTPException
@@ -100,9 +100,7 @@ def create_app(
         docs_url=None,  # the interactive docs load scripts from a CDN; the schema stays
         redoc_url=None,
     )
-    app.add_middleware(
-        SecurityHeaders, connect=None if cluster is None else lambda: peer_sockets(cluster)
-    )
+    app.add_middleware(SecurityHeaders, connect=page_sockets(settings, cluster))
     app.state.settings = settings
     app.state.registry = registry
     app.state.quotas = ClientQuotas(settings)
@@ -117,6 +115,15 @@ def create_app(
     matchmaker = install_players(app, registry, store, match_ids, cluster)
     _serve_web(app, settings.web_dir)
     return app
+
+
+def page_sockets(settings: Settings, cluster: Cluster | None) -> Callable[[], Iterable[str]] | None:
+    """What the page may open sockets to besides its own server, asked at each response:
+    the configured `socket_origins` and the other live servers of a cluster."""
+    configured = settings.socket_origins
+    if cluster is None:
+        return (lambda: configured) if configured else None
+    return lambda: [*configured, *peer_sockets(cluster)]
 
 
 def peer_sockets(cluster: Cluster) -> list[str]:

@@ -33,6 +33,10 @@ ENV_PREFIX = "POOL_"
 _environment: ContextVar[Mapping[str, str] | None] = ContextVar("pool_environment", default=None)
 
 
+# A WebSocket origin as a CSP source: scheme, host (its first label may be "*"), port.
+SocketOrigin = Annotated[str, Field(pattern=r"^wss?://(\*\.)?[A-Za-z0-9.-]+(:[0-9]{1,5})?$")]
+
+
 class SettingsError(ValueError):
     """A setting from the environment is missing its mark; the message names the variable."""
 
@@ -95,6 +99,10 @@ class Settings(BaseSettings):
     # origin, with `allowed_origins`, that may open a room socket. Unset: the request's Host.
     public_url: Annotated[str, Field(pattern=r"^https?://[^/?#\s]+/?$")] | None = None
     allowed_origins: Annotated[tuple[str, ...], NoDecode] = ()  # beside same-origin; "*": any
+    # More origins the page may open sockets to (its CSP's connect-src), e.g.
+    # "wss://*.pool.example": a cluster's page then reaches a room moved to a process that
+    # started after the page was served (else only the processes live then).
+    socket_origins: Annotated[tuple[SocketOrigin, ...], NoDecode] = ()
     max_message: Annotated[int, Field(ge=256, le=1024 * KIB)] = 16 * KIB
     send_queue: Annotated[int, Field(ge=4, le=100_000)] = 64  # messages waiting for a client
     # A client that cannot take what is queued for this long is dropped.
@@ -163,7 +171,7 @@ class Settings(BaseSettings):
             raise ValueError("a rate such as '30/minute'") from None
         return value
 
-    @field_validator("allowed_origins", mode="before")
+    @field_validator("allowed_origins", "socket_origins", mode="before")
     @classmethod
     def _comma_list(cls, value: Any) -> Any:
         if isinstance(value, str):

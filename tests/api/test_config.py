@@ -17,11 +17,13 @@ def test_overrides_are_typed_like_the_defaults():
             "POOL_SEND_QUEUE": "10",
             "POOL_ALLOWED_ORIGINS": "https://a.example, https://b.example",
             "POOL_WS_DEFLATE": "1",
+            "POOL_SOCKET_ORIGINS": "wss://*.pool.example, ws://127.0.0.1:8001",
             "UNRELATED": "x",
         }
     )
     assert settings.grace == 5.0 and settings.send_queue == 10
     assert settings.allowed_origins == ("https://a.example", "https://b.example")
+    assert settings.socket_origins == ("wss://*.pool.example", "ws://127.0.0.1:8001")
     assert settings.ws_deflate is True
     assert Settings.from_env({"POOL_WS_DEFLATE": "off"}).ws_deflate is False
     assert Settings.from_env({}) == Settings()
@@ -46,6 +48,8 @@ def test_the_database_path_is_a_setting_with_its_older_name_kept():
         ("POOL_WS_DEFLATE", "maybe"),
         ("POOL_MAX_ROOMS", "0"),
         ("POOL_RATE_PER_SECOND", "nan"),
+        ("POOL_SOCKET_ORIGINS", "wss://a.example; script-src *"),  # no more policy through it
+        ("POOL_SOCKET_ORIGINS", "https://a.example"),  # sockets only
     ],
 )
 def test_a_bad_value_is_refused_with_the_variable_named(variable: str, value: str):

@@ -109,5 +109,17 @@ def test_pages_carry_security_headers_and_only_the_client_is_served(client: Test
     assert client.get("/api/rooms").headers["x-content-type-options"] == "nosniff"
 
 
+def test_the_page_may_open_sockets_to_the_configured_origins(
+    client: TestClient, settings: Settings
+):
+    """`socket_origins` (e.g. every server of a cluster behind one domain) join the CSP's
+    connect-src; without them the page connects to its own server only."""
+    assert "connect-src 'self';" in client.get("/").headers["content-security-policy"]
+    wider = settings.replace(socket_origins=("wss://*.pool.example", "ws://10.0.0.7:8000"))
+    with TestClient(create_app(wider)) as other:
+        csp = other.get("/").headers["content-security-policy"]
+    assert "connect-src 'self' ws://10.0.0.7:8000 wss://*.pool.example;" in csp
+
+
 def test_a_replay_cannot_be_held_open_at_a_crawl(client: TestClient):
     assert client.get("/api/matches/1/shots/1/replay?pace=1e-9").status_code == 422
