@@ -14,6 +14,7 @@ from pathlib import Path
 import httpx
 
 from tests.support.redis import free_port
+from tests.support.waiting import until
 
 # Every clock short, the per-client limits off (one test address plays every seat).
 BASE: dict[str, object] = {
@@ -85,10 +86,11 @@ class Server:
     def wait_for_output(self, *lines: str, within: float) -> None:
         """Wait until every one of `lines` is in the log. Lines logged by different tasks or
         threads come in no fixed order, so each is waited for, not one after the other."""
-        deadline = time.monotonic() + within
-        while missing := [line for line in lines if line not in self.output()]:
-            assert time.monotonic() < deadline, f"not logged: {missing}\n{self.output()[-3000:]}"
-            time.sleep(0.1)
+        until(
+            lambda: all(line in self.output() for line in lines),
+            within,
+            lambda: f"not all logged: {lines}\n{self.output()[-3000:]}",
+        )
 
 
 @dataclass

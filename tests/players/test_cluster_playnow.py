@@ -17,6 +17,7 @@ from server.store import Database
 from server.store.players import PlayerRows
 from tests.cluster.servers import ServerSet
 from tests.cluster.sockets import connect, send, until
+from tests.support import waiting
 from tests.support.games import BREAK, EIGHT_BALL, shoot_message
 from tests.support.postgres import PostgresServer, postgres  # noqa: F401  (a fixture)
 from tests.support.redis import RedisServer, redis  # noqa: F401  (a fixture)
@@ -130,15 +131,16 @@ def stored(database_url: str, room_id: str, within: float = 20.0) -> None:
     both seats and its match, and the ranked record. The owner queues those writes, and a
     kill -9 loses whatever is still queued."""
     db = Database(database_url)
+
+    def held() -> bool:
+        snap = db.run(lambda repo: repo.room(room_id))
+        ranked = db.run(lambda repo: PlayerRows(repo).ranked(room_id))
+        if snap is None or ranked is None:
+            return False
+        return all(snap.data["seats"]) and snap.data["match_id"] is not None
+
     try:
-        deadline = time.monotonic() + within
-        while True:
-            snap = db.run(lambda repo: repo.room(room_id))
-            ranked = db.run(lambda repo: PlayerRows(repo).ranked(room_id))
-            if snap and ranked and all(snap.data["seats"]) and snap.data["match_id"] is not None:
-                return
-            assert time.monotonic() < deadline, f"room {room_id} not stored: {snap}, {ranked}"
-            time.sleep(0.1)
+        waiting.until(held, within, f"room {room_id} not stored")
     finally:
         db.close()
 
