@@ -3,6 +3,7 @@ cannot be framed, and sends no referrer off-site."""
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable, Iterable
 
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
@@ -22,11 +23,17 @@ HEADERS: list[tuple[bytes, bytes]] = [
 
 
 def headers_with(connect: Iterable[str]) -> list[tuple[bytes, bytes]]:
-    """`HEADERS`, the page also allowed to open sockets to `connect` (the other servers of
-    a cluster: a room's `ws_url` may be on any of them)."""
-    extra = " ".join(sorted(set(connect)))
-    if not extra:
+    """`HEADERS`, the page also allowed to open sockets to `connect` (configured origins,
+    the other servers of a cluster: a room's `ws_url` may be on any of them)."""
+    return _headers_for(tuple(sorted(set(connect))))
+
+
+@functools.lru_cache(maxsize=32)
+def _headers_for(origins: tuple[str, ...]) -> list[tuple[bytes, bytes]]:
+    """Built once per set of origins (asked at every response, it rarely changes)."""
+    if not origins:
         return HEADERS
+    extra = " ".join(origins)
     policy = CONTENT_SECURITY_POLICY.replace("connect-src 'self'", f"connect-src 'self' {extra}")
     return [(b"content-security-policy", policy.encode()), *HEADERS[1:]]
 

@@ -86,8 +86,13 @@ class Server:
     def wait_for_output(self, *lines: str, within: float) -> None:
         """Wait until every one of `lines` is in the log. Lines logged by different tasks or
         threads come in no fixed order, so each is waited for, not one after the other."""
+
+        def logged() -> bool:
+            text = self.output()  # the file read once a look
+            return all(line in text for line in lines)
+
         until(
-            lambda: all(line in self.output() for line in lines),
+            logged,
             within,
             lambda: f"not all logged: {lines}\n{self.output()[-3000:]}",
         )
