@@ -73,7 +73,7 @@ LEVEL_TABLE: tuple[Level, ...] = (
     Level("beginner", 1.5, 0.30, 3.0, 4, 2, 1, 3, 4, False, 1, 0.2, budget=200),
     Level("amateur", 0.7, 0.18, 2.0, 6, 3, 3, 4, 6, True, 2, 0.6, budget=350),
     Level("club", 0.35, 0.11, 1.0, 8, 3, 3, 6, 10, True, 3, 1.0, 2, 10, 550, 2),
-    Level("pro", 0.125, 0.075, 0.5, 12, 4, 5, 12, 20, True, 3, 1.0, 3, 40, 2400, 10, True),
+    Level("pro", 0.125, 0.075, 0.5, 16, 4, 5, 16, 30, True, 3, 1.0, 4, 60, 3600, 14, True),
 )
 LEVELS: tuple[str, ...] = tuple(level.name for level in LEVEL_TABLE)
 BY_NAME: dict[str, Level] = {level.name: level for level in LEVEL_TABLE}
