@@ -131,16 +131,18 @@ def stored(database_url: str, room_id: str, within: float = 20.0) -> None:
     both seats and its match, and the ranked record. The owner queues those writes, and a
     kill -9 loses whatever is still queued."""
     db = Database(database_url)
+    last: dict[str, object] = {}  # what it read last, for the failure message
 
     def held() -> bool:
         snap = db.run(lambda repo: repo.room(room_id))
         ranked = db.run(lambda repo: PlayerRows(repo).ranked(room_id))
+        last.update(room=None if snap is None else snap.data, ranked=ranked)
         if snap is None or ranked is None:
             return False
         return all(snap.data["seats"]) and snap.data["match_id"] is not None
 
     try:
-        waiting.until(held, within, f"room {room_id} not stored")
+        waiting.until(held, within, lambda: f"room {room_id} not stored; last read {last}")
     finally:
         db.close()
 
