@@ -265,7 +265,6 @@ def play_game(
     players = [make_player(names[0], seed * 2 + 1), make_player(names[1], seed * 2 + 2)]
     rng = np.random.default_rng(seed + 12345)
     counts = Counts(games=1)
-    tags = [f"{names[0]}", f"{names[1]}"] if names[0] != names[1] else ["A", "B"]
     for _ in range(MAX_TURNS):
         if game.over:
             break
@@ -280,7 +279,6 @@ def play_game(
         if outcome is None:
             continue
         counts.tally(who, turn, outcome)
-    del tags
     return (game.winner if game.over else None), counts
 
 
