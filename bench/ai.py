@@ -3,11 +3,11 @@ ladder of levels, plan times and per-game counts.
 
     python -m bench.ai [--games 200] [--runouts 200] [--only runouts,greedy,ladder,loop]
                        [--kind eight_ball] [--seed 0] [--jobs 1]
-                       [--rooms 2] [--workers 1] [--seconds 10] [--configs 1200]
+                       [--rooms 2] [--workers 1] [--seconds 10] [--configs 1200] [--fit]
                        [--save outcomes.json] [--paired earlier.json]
 
 `calibrate`: the pot chance the search plans with against the engine's measured rates
-under the top level's noise (what `geometry.FASTFIZ` was fitted to).
+under the top level's noise (what `geometry.FASTFIZ` was fitted to); `--fit` refits it.
 
 `loop`: how late the server's event loop runs (what every room's frames wait) while
 computer seats plan in threads or in worker processes, as `server.rooms.computer` does.
@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import itertools
 import json
 import math
 import multiprocessing
@@ -43,6 +44,7 @@ from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
 
 import numpy as np
+from numba import njit
 
 from server.ai import LEVELS, Bot, Turn, play_turn
 from server.ai.aiming import clamp_shot
@@ -450,22 +452,72 @@ def pot_rates(configs: int, seed: int) -> np.ndarray:
     return np.array(rows)
 
 
-def model_rates(data: np.ndarray, model: ChanceModel, aim: float, r: float) -> np.ndarray:
-    """The chance `model` gives each row of `pot_rates`, with the pot kernel's own helpers
-    (`clean_window`, `ghost_error`, `object_sigma`, `drop_chance`)."""
-    chances = []
-    for d1, d2, cut, side, cos_in, _ in data:
+@njit(cache=True)
+def _model_kernel(data: np.ndarray, params: np.ndarray, aim: float, r: float) -> np.ndarray:
+    """The chance a model (aim scale, floor, cut, jaw, side) gives each row of `pot_rates`,
+    with the pot kernel's own helpers (`clean_window`, `ghost_error`, `object_sigma`,
+    `drop_chance`); compiled, so a grid of models is quick."""
+    aim_scale, floor, cut_sigma, jaw, side_cost = params
+    out = np.empty(len(data))
+    for i in range(len(data)):
+        d1, d2, cut, side, cos_in = data[i, 0], data[i, 1], data[i, 2], data[i, 3], data[i, 4]
         mouth = 0.127 if side > 0 else 0.114
-        window = clean_window(mouth, cos_in, r, model.jaw) - model.side * side
-        s_aim = ghost_error(d1, aim, math.cos(cut), r, model.aim_scale)
-        sigma = object_sigma(s_aim, math.sin(cut), model.floor, model.cut, 0.0)
-        chances.append(drop_chance(max(window, 1e-4), d2, sigma))
-    return np.clip(np.array(chances), 1e-4, 1 - 1e-4)
+        window = clean_window(mouth, cos_in, r, jaw) - side_cost * side
+        s_aim = ghost_error(d1, aim, math.cos(cut), r, aim_scale)
+        sigma = object_sigma(s_aim, math.sin(cut), floor, cut_sigma, 0.0)
+        out[i] = min(max(drop_chance(max(window, 1e-4), d2, sigma), 1e-4), 1 - 1e-4)
+    return out
 
 
-def calibrate(configs: int, seed: int) -> None:
+def model_rates(data: np.ndarray, model: ChanceModel, aim: float, r: float) -> np.ndarray:
+    """The chance `model` gives each row of `pot_rates`."""
+    params = np.array([model.aim_scale, model.floor, model.cut, model.jaw, model.side])
+    return _model_kernel(np.ascontiguousarray(data), params, aim, r)
+
+
+# The grid `calibrate` refits the model on (`geometry.FASTFIZ` is its best point on 3,000
+# pots, seed 11): aim scale, floor (rad), cut term (rad), jaw (m), side-pocket cost (m).
+FIT_GRID = (
+    (1.0, 1.2, 1.4, 1.6, 1.8, 2.0, 2.4),
+    (0.0, 0.005, 0.01, 0.015, 0.02, 0.025),
+    (0.0, 0.02, 0.04, 0.06),
+    (0.0, 0.008, 0.016, 0.024, 0.032),
+    (0.0, 0.01, 0.02),
+)
+EASY = 0.7  # the pots `calibrate` ranks among: those a model calls at least this likely
+
+
+def log_loss(chance: np.ndarray, rate: np.ndarray) -> float:
+    """Mean negative log-likelihood per pot of the measured rates (`CALIBRATE_TRIALS`
+    strokes each) under `chance`."""
+    n = CALIBRATE_TRIALS
+    return float(-(n * (rate * np.log(chance) + (1 - rate) * np.log(1 - chance))).mean())
+
+
+def rank_correlation(a: np.ndarray, b: np.ndarray) -> float:
+    """Spearman's rank correlation (ties broken by order): how well `a` orders `b`."""
+    ra, rb = np.argsort(np.argsort(a)), np.argsort(np.argsort(b))
+    return float(np.corrcoef(ra, rb)[0, 1])
+
+
+def refit(data: np.ndarray, aim: float, r: float) -> tuple[float, ChanceModel]:
+    """The model of `FIT_GRID` with the least log-loss on `data`: (log-loss, model)."""
+    rate = np.ascontiguousarray(data[:, 5])
+    best: tuple[float, ChanceModel] | None = None
+    for params in itertools.product(*FIT_GRID):
+        chance = _model_kernel(np.ascontiguousarray(data), np.array(params), aim, r)
+        loss = log_loss(chance, rate)
+        if best is None or loss < best[0]:
+            best = (loss, ChanceModel(*params))
+    assert best is not None
+    return best
+
+
+def calibrate(configs: int, seed: int, fit: bool = False) -> None:
     """Measure pot rates under the top level's noise and compare the plain geometric
-    chance with the fitted model (`geometry.FASTFIZ`): log-loss and rates by distance."""
+    chance (at the aim sigma position play plans with) with the fitted model
+    (`geometry.FASTFIZ`): log-loss, rates by distance, and how well each orders the
+    likely pots (what position play compares); `fit` also refits the model on the grid."""
     from server.ai.geometry import FASTFIZ, GEOMETRIC, MIN_AIM_SIGMA
 
     t0 = time.perf_counter()
@@ -474,15 +526,18 @@ def calibrate(configs: int, seed: int) -> None:
     plain = model_rates(data, GEOMETRIC, max(aim, MIN_AIM_SIGMA), r)
     fitted = model_rates(data, FASTFIZ, aim, r)
     rate = data[:, 5]
-    n = CALIBRATE_TRIALS
-
-    def loss(p: np.ndarray) -> float:
-        return float(-(n * (rate * np.log(p) + (1 - rate) * np.log(1 - p))).mean())
-
     print(
-        f"pot chance vs the engine ({configs} pots x {n} noisy strokes, "
-        f"{time.perf_counter() - t0:.0f} s): log-loss per pot plain {loss(plain):.2f}, "
-        f"fitted {loss(fitted):.2f}"
+        f"pot chance vs the engine ({configs} pots x {CALIBRATE_TRIALS} noisy strokes, "
+        f"{time.perf_counter() - t0:.0f} s): log-loss per pot plain "
+        f"{log_loss(plain, rate):.2f}, fitted {log_loss(fitted, rate):.2f}"
+    )
+    easy = (plain >= EASY) | (fitted >= EASY)
+    print(
+        f"  rank correlation with the measured rates: all pots plain "
+        f"{rank_correlation(plain, rate):.3f}, fitted {rank_correlation(fitted, rate):.3f}; "
+        f"the {int(easy.sum())} pots either calls {EASY:.0%} or more plain "
+        f"{rank_correlation(plain[easy], rate[easy]):.3f}, fitted "
+        f"{rank_correlation(fitted[easy], rate[easy]):.3f}"
     )
     for name, col, edges in (
         ("cue->object m", 0, (0, 0.3, 0.6, 1.0, 1.5, 3.0)),
@@ -497,6 +552,23 @@ def calibrate(configs: int, seed: int) -> None:
                     f"  {name} {lo}-{hi}: {int(m.sum())} pots, measured {rate[m].mean():.2f}, "
                     f"plain {plain[m].mean():.2f}, fitted {fitted[m].mean():.2f}"
                 )
+    short = data[:, 0] < 0.3
+    for lo, hi in ((0.0, 0.8), (0.8, 1.3), (1.3, 3.5)):
+        m = short & (data[:, 1] >= lo) & (data[:, 1] < hi)
+        if m.any():
+            print(
+                f"  cue->object under 0.3 m, object->pocket {lo}-{hi} m: {int(m.sum())} pots, "
+                f"measured {rate[m].mean():.2f}, plain {plain[m].mean():.2f}, "
+                f"fitted {fitted[m].mean():.2f}"
+            )
+    if fit:
+        t1 = time.perf_counter()
+        loss, best = refit(data, aim, r)
+        print(
+            f"  refit on the grid ({time.perf_counter() - t1:.0f} s): log-loss {loss:.2f} with "
+            f"aim_scale={best.aim_scale}, floor={best.floor}, cut={best.cut}, jaw={best.jaw}, "
+            f"side={best.side}"
+        )
 
 
 def _map(fn: Callable, jobs_args: list, jobs: int) -> list:
@@ -581,6 +653,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--workers", type=int, default=1, help="planner processes (loop)")
     parser.add_argument("--seconds", type=float, default=10.0, help="per mode (loop)")
     parser.add_argument("--configs", type=int, default=1200, help="pots measured (calibrate)")
+    parser.add_argument("--fit", action="store_true", help="refit the chance model (calibrate)")
     parser.add_argument("--save", help="write each rack's and game's outcome by seed (JSON)")
     parser.add_argument("--paired", help="compare seed by seed with a file --save wrote")
     args = parser.parse_args(argv)
@@ -611,7 +684,7 @@ def main(argv: list[str] | None = None) -> int:
         won = match("eight_ball", LEVELS[-1], "greedy", args.games, args.seed, args.jobs)
         outcomes["greedy"] = won
     if "calibrate" in parts:
-        calibrate(args.configs, args.seed)
+        calibrate(args.configs, args.seed, args.fit)
     if "loop" in parts:
         loop_report(args.rooms, args.workers, args.seconds, args.seed)
     if "ladder" in parts:

@@ -1,5 +1,5 @@
-"""`python -m bench.ai`'s paired comparison: a saved run replays seed for seed, and the
-report counts the seeds only one version won."""
+"""`python -m bench.ai`'s paired comparison (a saved run replays seed for seed, and the
+report counts the seeds only one version won) and its refit of the pot-chance model."""
 
 from __future__ import annotations
 
@@ -7,10 +7,23 @@ import json
 import re
 from pathlib import Path
 
+import numpy as np
 import pytest
 
-from bench.ai import Counts, _map, end_of_rack, main, report_chances, sign_test
-from server.ai import Turn
+from bench.ai import (
+    Counts,
+    _map,
+    end_of_rack,
+    log_loss,
+    main,
+    model_rates,
+    rank_correlation,
+    refit,
+    report_chances,
+    sign_test,
+)
+from server.ai import Bot, Turn
+from server.ai.geometry import ChanceModel
 from server.rules import Foul, Outcome
 
 
@@ -107,3 +120,28 @@ def test_pots_are_counted_by_the_chance_their_plan_gave_them(
     report_chances(counts, "pro")
     line = capsys.readouterr().out
     assert "0-50 %: 0/1; 90-100 %: 1/2; 100 %: 2/3" in line
+
+
+def test_the_chance_refit_finds_the_model_the_rates_came_from() -> None:
+    # Pots whose rates are exactly what a model of the grid says: the refit must give it
+    # back, and it must order them as well as a model can.
+    rng = np.random.default_rng(3)
+    n = 400
+    data = np.column_stack(
+        [
+            rng.uniform(0.1, 2.0, n),  # cue -> object, m
+            rng.uniform(0.1, 2.0, n),  # object -> pocket, m
+            rng.uniform(0.0, 1.2, n),  # cut, rad
+            (rng.uniform(size=n) < 0.3).astype(float),  # side pocket
+            rng.uniform(0.5, 1.0, n),  # cos of the approach
+            np.zeros(n),
+        ]
+    )
+    aim = Bot(Bot.LEVELS[-1]).level.aim
+    truth = ChanceModel(aim_scale=1.6, floor=0.01, cut=0.02, jaw=0.024, side=0.01)
+    data[:, 5] = model_rates(data, truth, aim, 0.028575)
+    loss, found = refit(data, aim, 0.028575)
+    assert found == truth
+    assert loss == log_loss(data[:, 5], data[:, 5])
+    assert rank_correlation(data[:, 5], data[:, 5]) == pytest.approx(1.0)
+    assert rank_correlation(-data[:, 5], data[:, 5]) < -0.999  # ties at the clip aside
