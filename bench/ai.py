@@ -502,10 +502,10 @@ def rank_correlation(a: np.ndarray, b: np.ndarray) -> float:
 
 def refit(data: np.ndarray, aim: float, r: float) -> tuple[float, ChanceModel]:
     """The model of `FIT_GRID` with the least log-loss on `data`: (log-loss, model)."""
-    rate = np.ascontiguousarray(data[:, 5])
+    rows, rate = np.ascontiguousarray(data), data[:, 5]
     best: tuple[float, ChanceModel] | None = None
     for params in itertools.product(*FIT_GRID):
-        chance = _model_kernel(np.ascontiguousarray(data), np.array(params), aim, r)
+        chance = _model_kernel(rows, np.array(params), aim, r)
         loss = log_loss(chance, rate)
         if best is None or loss < best[0]:
             best = (loss, ChanceModel(*params))
