@@ -47,7 +47,7 @@ GEOMETRIC = ChanceModel()  # the plain ghost-ball estimate (the lower levels pla
 # aimed for the throw as the search aims, 30 noisy strokes each. The plain model ignores
 # that a long object-ball distance costs far more than a long cue-ball one. The earlier fit
 # (to pots aimed at the ghost ball) had a floor of 1.4 degrees, several times what the
-# object ball strays by from a cue ball 0.2 m away (0.35-0.5 degrees in the engine): it
+# object ball strays by from a cue ball 0.2 m away (0.35-0.53 degrees in the engine): it
 # made a long object-ball distance hard however close the cue ball was, and ordered the
 # likely pots worse than the plain model did (docs/ai.md, "Chance round").
 FASTFIZ = ChanceModel(aim_scale=2.0, floor=0.015, cut=0.04, jaw=0.032, side=0.02)
