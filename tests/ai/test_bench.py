@@ -24,6 +24,7 @@ from bench.ai import (
 )
 from server.ai import Bot, Turn
 from server.ai.geometry import ChanceModel
+from server.engine import BALL_RADIUS
 from server.rules import Foul, Outcome
 
 
@@ -139,8 +140,8 @@ def test_the_chance_refit_finds_the_model_the_rates_came_from() -> None:
     )
     aim = Bot(Bot.LEVELS[-1]).level.aim
     truth = ChanceModel(aim_scale=1.6, floor=0.01, cut=0.02, jaw=0.024, side=0.01)
-    data[:, 5] = model_rates(data, truth, aim, 0.028575)
-    loss, found = refit(data, aim, 0.028575)
+    data[:, 5] = model_rates(data, truth, aim, BALL_RADIUS)
+    loss, found = refit(data, aim, BALL_RADIUS)
     assert found == truth
     assert loss == log_loss(data[:, 5], data[:, 5])
     assert rank_correlation(data[:, 5], data[:, 5]) == pytest.approx(1.0)
