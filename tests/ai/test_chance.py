@@ -21,7 +21,7 @@ from server.ai.geometry import (
 from server.ai.search import SPEED_FACTORS
 from server.engine import BallSet, simulate
 
-from .conftest import TABLE, straight_line
+from .conftest import TABLE, pocket_aim, straight_line
 
 PRO = Bot(Bot.LEVELS[-1]).level
 
@@ -36,7 +36,7 @@ def _pot_at(object_from_pocket: float, cue_behind: float, cut_deg: float) -> Bal
     """An object ball on the line from corner 3 to the table's centre, and the cue ball
     `cue_behind` m from the ghost ball along a line `cut_deg` off the pot's line."""
     obj, _ = straight_line(3, object_from_pocket, 0.0)
-    mouth, _ = straight_line(3, 0.0, 0.0)
+    mouth = pocket_aim(3)
     ux, uy = (obj[0] - mouth[0]) / object_from_pocket, (obj[1] - mouth[1]) / object_from_pocket
     gx, gy = obj[0] + 2 * TABLE.ball_radius * ux, obj[1] + 2 * TABLE.ball_radius * uy
     c, s = math.cos(math.radians(cut_deg)), math.sin(math.radians(cut_deg))
