@@ -27,8 +27,9 @@ def test_break_seen_by_both_players_and_a_spectator_then_reload_rejoins(
     ana.get_by_test_id("race-to").fill("2")
     ana.get_by_test_id("create-room").click()
     ana.wait_for_url(re.compile(r"/r/[A-Za-z0-9_-]+$"))
+    # The link is filled in once the room has been read over HTTP, after the page loads.
+    expect(ana.get_by_test_id("room-link")).to_have_value(ana.url)
     link = ana.get_by_test_id("room-link").input_value()
-    assert link == ana.url
     wait_ready(ana, "waiting")
     expect(ana.get_by_test_id("turn")).to_contain_text("Waiting for an opponent")
     dpr_backing = ana.evaluate(
