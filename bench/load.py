@@ -24,9 +24,11 @@ runs:
   k/120 s after the `shoot` (so 100 % when every motion comes within 0.1 s);
 - the server's own view (`GET /api/stats`): from the room taking `shoot` to its `motion`
   leaving (simulation, tracing, judging, any wait for a thread or the loop), p50 / p99;
-- server CPU (process user+system time from /proc, all threads, in % of one core) and this
-  client process's CPU, so a saturated client is visible; and the machine's steal time (a
-  VM host taking the cores away: runs with high steal are slow for reasons outside the code);
+- server CPU (process user+system time from /proc, all threads, in % of one core), its
+  computer planners' CPU (the processes it started; idle-class, so they take only what
+  the rooms leave) and this client process's CPU, so a saturated client is visible; and
+  the machine's steal time (a VM host taking the cores away: runs with high steal are slow
+  for reasons outside the code);
 - bytes per second per client on the wire (WebSocket frames as received from the socket,
   compressed when permessage-deflate was negotiated): over the whole window, and per second
   of shot (a spectator's bytes from a shot's `motion` to its `shot_result`, over the shots'
@@ -155,6 +157,18 @@ def cpu_seconds(pid: int) -> float:
     """User + system CPU time of a process (all its threads)."""
     fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def children_cpu_seconds(pid: int) -> float:
+    """User + system CPU time of the processes `pid` started (the server's computer
+    planners): how much of the machine the computer's thinking took."""
+    total = 0.0
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        with contextlib.suppress(OSError, IndexError, ValueError):
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+            if int(fields[1]) == pid:
+                total += (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+    return total
 
 
 def own_cpu_seconds() -> float:
@@ -458,6 +472,7 @@ async def drive(
     await asyncio.sleep(warmup)  # every room starts shooting; the connections' burst settles
     bytes0 = sum(ws.received for ws in connected)
     cpu0, own0, t0 = cpu_seconds(proc.pid), own_cpu_seconds(), time.perf_counter()
+    planners0 = children_cpu_seconds(proc.pid)
     all0, steal0 = machine_ticks()
     with no_cyclic_gc():
         stats.measuring = True
@@ -467,6 +482,7 @@ async def drive(
     async with httpx.AsyncClient(base_url=base, timeout=60) as http:
         server = (await http.get("/api/stats", params={"window": elapsed})).json()["stream"]
     cpu1, own1 = cpu_seconds(proc.pid), own_cpu_seconds()
+    planners1 = children_cpu_seconds(proc.pid)
     all1, steal1 = machine_ticks()
     bytes1 = sum(ws.received for ws in connected)
     stop.set()
@@ -488,6 +504,7 @@ async def drive(
         "server_start_p99_ms": server["start_p99_ms"] if server["shots"] else math.nan,
         "shots": stats.shots,
         "server_cpu": 100 * (cpu1 - cpu0) / elapsed,
+        "planner_cpu": 100 * (planners1 - planners0) / elapsed,
         "steal_pct": 100 * (steal1 - steal0) / max(1, all1 - all0),
         "client_cpu": 100 * (own1 - own0) / elapsed,
         "bytes_per_s_client": (bytes1 - bytes0) / elapsed / max(1, clients),
@@ -511,6 +528,7 @@ COLUMNS = [
     ("shots", "shots", "{:.0f}"),
     ("shot s", "shot_seconds", "{:.2f}"),
     ("server CPU %", "server_cpu", "{:.0f}"),
+    ("planner CPU %", "planner_cpu", "{:.0f}"),
     ("client CPU %", "client_cpu", "{:.0f}"),
     ("steal %", "steal_pct", "{:.0f}"),
     ("B/s/client", "bytes_per_s_client", "{:.0f}"),
