@@ -51,6 +51,13 @@ class MotionState(IntEnum):
     POCKETED = 4
 
 
+# The states as plain ints: the search reads them hundreds of thousands of times a turn,
+# and a member looked up on the enum class is far slower than a module global.
+_POCKETED = int(MotionState.POCKETED)
+_SLIDING = int(MotionState.SLIDING)
+_ROLLING = int(MotionState.ROLLING)
+
+
 @dataclass
 class BallSet:
     """Mutable ball state. The engine's `step` advances it in place; `copy()` before keeping.
@@ -103,20 +110,16 @@ class BallSet:
         )
 
     def copy(self) -> BallSet:
-        return BallSet(
-            *(
-                a.copy()
-                for a in (
-                    self.ids,
-                    self.positions,
-                    self.velocities,
-                    self.spins,
-                    self.states,
-                    self.phases,
-                    self.pockets,
-                )
-            )
-        )
+        """A copy sharing no array (its shapes are this set's, checked already)."""
+        out = object.__new__(BallSet)
+        out.ids = self.ids.copy()
+        out.positions = self.positions.copy()
+        out.velocities = self.velocities.copy()
+        out.spins = self.spins.copy()
+        out.states = self.states.copy()
+        out.phases = self.phases.copy()
+        out.pockets = self.pockets.copy()
+        return out
 
     def __len__(self) -> int:
         return len(self.ids)
@@ -131,12 +134,12 @@ class BallSet:
     @property
     def on_table(self) -> np.ndarray:
         """(N,) bool: the ball has not been pocketed."""
-        return self.states != MotionState.POCKETED
+        return self.states != _POCKETED
 
     @property
     def moving(self) -> np.ndarray:
         """(N,) bool: the ball translates (sliding or rolling)."""
-        return (self.states == MotionState.SLIDING) | (self.states == MotionState.ROLLING)
+        return (self.states == _SLIDING) | (self.states == _ROLLING)
 
     def at_rest(self) -> bool:
         """No ball translates any more."""
@@ -155,10 +158,10 @@ class BallSet:
         return (float(x), float(y))
 
     def pocketed_ids(self) -> list[int]:
-        return [int(i) for i in self.ids[~self.on_table]]
+        return self.ids[~self.on_table].tolist()
 
     def on_table_ids(self) -> list[int]:
-        return [int(i) for i in self.ids[self.on_table]]
+        return self.ids[self.on_table].tolist()
 
     def with_ball(self, ball_id: int, xy: tuple[float, float]) -> BallSet:
         """A copy with ball `ball_id` stationary on the table at `xy` (spotting, ball in hand)."""

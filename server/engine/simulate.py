@@ -36,12 +36,20 @@ class _Geometry:
 
 
 _geometry_cache: dict[Table, _Geometry] = {}
+_last_geometry: tuple[Table, _Geometry] | None = None  # the search asks for one table
 
 
 def _geometry(table: Table) -> _Geometry:
+    """The arrays of `table`. The table last asked for is found by identity: hashing a
+    Table (every cushion and pocket) cost more than a short shot's Python around it."""
+    global _last_geometry
+    last = _last_geometry
+    if last is not None and last[0] is table:
+        return last[1]
     geo = _geometry_cache.get(table)
     if geo is None:
         geo = _geometry_cache[table] = _Geometry(table)
+    _last_geometry = (table, geo)
     return geo
 
 
@@ -50,16 +58,20 @@ def strike(
 ) -> Event:
     """Give the cue ball the shot's velocity and spin (in place); returns the strike event."""
     row = balls.index(CUE)
-    if balls.states[row] == MotionState.POCKETED:
+    if balls.states[row] == _POCKETED:
         raise ValueError("the cue ball is not on the table")
     (vx, vy), (wx, wy, wz) = shot.cue_ball_motion(params.radius, params.cue_mass_ratio)
     balls.velocities[row] = (vx, vy)
     balls.spins[row] = (wx, wy, wz)
     classify(balls.velocities, balls.spins, balls.states, row, params.radius)
-    return Event(time, EventKind.STRIKE.value, (CUE,), float(shot.speed))
+    return Event(time, _STRIKE, (CUE,), float(shot.speed))
 
 
 _KIND_NAMES = tuple(kind.value for kind in EVENT_CODES)
+_STRIKE = EventKind.STRIKE.value
+_POCKETED = int(MotionState.POCKETED)
+_SPINNING = int(MotionState.SPINNING)
+_STATIONARY = int(MotionState.STATIONARY)
 
 
 def _events_from(rows: np.ndarray, ids: np.ndarray) -> list[Event]:
@@ -165,9 +177,9 @@ class ShotInMotion:
         positions, cels, on_table, rows, stalls = self._raw
         state = self.state
         events = self._events + _events_from(rows, state.ids)
-        spinning = state.states == MotionState.SPINNING
+        spinning = state.states == _SPINNING
         state.spins[spinning] = 0.0
-        state.states[spinning] = MotionState.STATIONARY
+        state.states[spinning] = _STATIONARY
         frames = FrameSequence(self.tick, positions, cels, on_table)
         return ShotResult(state.ids.copy(), frames, events, state, int(stalls))
 

@@ -36,7 +36,8 @@ def group_of(ball_id: int) -> str | None:
 
 def group_left(on_table: Iterable[int], group: str) -> list[int]:
     """Balls of `group` still on the table."""
-    return sorted(b for b in on_table if b in GROUPS[group])
+    members = GROUPS[group]
+    return sorted([b for b in on_table if b in members])
 
 
 def on_eight(on_table: Sequence[int], groups: Sequence[str] | None, seat: int) -> bool:

@@ -11,6 +11,8 @@ from dataclasses import dataclass
 from server.engine import CUE, BallSet, EventKind, ShotResult
 
 RAIL_KINDS = (EventKind.CUSHION.value, EventKind.JAW.value)  # a pocket point is a rail too
+_BALL = EventKind.BALL.value  # read once: a shot's facts are read for every simulated shot
+_POCKET = EventKind.POCKET.value
 
 
 @dataclass(frozen=True)
@@ -50,7 +52,7 @@ def shot_facts(before: BallSet, result: ShotResult) -> ShotFacts:
     pockets: dict[int, int] = {}
     to_rail: set[int] = set()
     for event in result.events:
-        if event.kind == EventKind.BALL.value:
+        if event.kind == _BALL:
             if not contact_seen and CUE in event.ids:
                 others = [i for i in event.ids if i != CUE]
                 first_contact = others[0] if others else None
@@ -59,7 +61,7 @@ def shot_facts(before: BallSet, result: ShotResult) -> ShotFacts:
             if contact_seen:
                 rail_after_contact = True
             to_rail.update(i for i in event.ids if i != CUE)
-        elif event.kind == EventKind.POCKET.value:
+        elif event.kind == _POCKET:
             for ball in event.ids:
                 if ball not in pockets:
                     order.append(ball)
