@@ -28,7 +28,9 @@ class Level:
     placements: ball-in-hand spots searched in full; position: weight of the position left;
     confirm / confirm_samples: the best few variants sampled again on fresh draws;
     budget: simulations per turn at most (it bounds the plan time); lookahead: how many of
-    the best pots get a simulated search of the next shot from the table they leave.
+    the best pots get a simulated search of the next shot from the table they leave;
+    calibrated: it ranks unsimulated pots with the chance model fitted to the engine;
+    late_strokes: that search tries more strokes late in a rack (`search.LATE_BALLS`).
     """
 
     name: str
@@ -48,6 +50,7 @@ class Level:
     budget: int = 1000
     lookahead: int = 0
     calibrated: bool = False
+    late_strokes: bool = False
 
     @property
     def chance_model(self) -> ChanceModel:
@@ -73,7 +76,7 @@ LEVEL_TABLE: tuple[Level, ...] = (
     Level("beginner", 1.5, 0.30, 3.0, 4, 2, 1, 3, 4, False, 1, 0.2, budget=200),
     Level("amateur", 0.7, 0.18, 2.0, 6, 3, 3, 4, 6, True, 2, 0.6, budget=350),
     Level("club", 0.35, 0.11, 1.0, 8, 3, 3, 6, 10, True, 3, 1.0, 2, 10, 550, 2),
-    Level("pro", 0.125, 0.075, 0.5, 16, 4, 5, 16, 30, True, 3, 1.0, 4, 60, 3600, 14, True),
+    Level("pro", 0.125, 0.075, 0.5, 16, 4, 5, 16, 30, True, 3, 1.0, 4, 60, 3600, 14, True, True),
 )
 LEVELS: tuple[str, ...] = tuple(level.name for level in LEVEL_TABLE)
 BY_NAME: dict[str, Level] = {level.name: level for level in LEVEL_TABLE}

@@ -58,6 +58,13 @@ SPEED_FACTORS = (1.25, 1.8, 3.0, 4.6)
 FEW_POTS = 4
 FINE_SPEED_FACTORS = (1.1, 1.4, 1.8, 2.4, 3.0, 3.8, 4.6)
 FINE_TIPS = (*TIPS, (0.0, 0.18), (0.0, -0.18), (0.3, -0.15), (-0.3, -0.15))
+# Late in a rack (this many balls or fewer to pot before the game ball, and few pots on)
+# the next-shot search of a level with `late_strokes` tries more strokes on each pot: the
+# position for the last balls is where the racks are lost (docs/ai.md, "End-of-rack
+# round"), and there the budget goes partly unspent.
+LATE_BALLS = 2
+LATE_SPEED_FACTORS = (1.25, 1.8, 2.4, 3.0)
+LATE_LOOK_SIMS = LOOK_PAIRS * len(LATE_SPEED_FACTORS) * len(TIPS)  # what that search may take
 SAFETY_SPEEDS = (0.7, 1.4, 2.6)
 KICK_SPEEDS = (1.5, 2.6, 4.0)
 KICK_OFFSETS = (-2.0, -0.8, 0.0, 0.8, 2.0)  # degrees off the mirror-image line
@@ -347,13 +354,17 @@ class Search:
         model = self.level.chance_model
         sigma = self.plan_sigma() if model.floor else max(self.plan_sigma(), MIN_AIM_SIGMA)
         options = pot_options(self.table, final, self.targets(nxt), sigma, model=model)
+        speeds, tips = SPEED_FACTORS[:LOOK_SPEEDS], TIPS[:LOOK_TIPS]
+        late = self.level.late_strokes and len(options) <= FEW_POTS and self._late(nxt)
+        if late and self.limit - self.sims >= LATE_LOOK_SIMS:
+            speeds, tips = LATE_SPEED_FACTORS, TIPS
         options = options[:LOOK_PAIRS]
         needs_call = self.rules.requires_call(nxt)
         best = -math.inf
         for option in options:
             base = speed_for(option)
-            for factor in SPEED_FACTORS[:LOOK_SPEEDS]:
-                for side, height in TIPS[:LOOK_TIPS]:
+            for factor in speeds:
+                for side, height in tips:
                     speed = min(base * factor, 0.85 * MAX_SPEED)
                     shot = aimed(option.angle, speed, side, height)
                     after = replace(nxt, called_pocket=option.pocket) if needs_call else nxt
@@ -365,6 +376,15 @@ class Search:
                     est = option.chance * v + (1 - option.chance) * GIVE_UP if ok else -math.inf
                     best = max(best, est)
         return best
+
+    def _late(self, pos: Position) -> bool:
+        """At most `LATE_BALLS` balls left to pot before the game ball (the 8 once the
+        groups are chosen; in 9-ball the 9)."""
+        left = self.rules.balls_left(pos)
+        if left is None:
+            return False
+        before_game_ball = len(left[pos.turn]) - (1 if self.rules.kind == "nine_ball" else 0)
+        return before_game_ball <= LATE_BALLS
 
     # --- candidates -------------------------------------------------------------------
     def pot_candidates(self, balls: BallSet, pairs: int) -> list[Candidate]:

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import pytest
@@ -23,6 +23,7 @@ from server.ai.search import (
 from server.codec import to_data
 from server.engine import CUE, MAX_SPEED, MAX_TIP, Shot, simulate
 from server.rules import ANYWHERE, BEHIND_HEAD_STRING, Decision, Game
+from server.rules.ruling import Ruling
 from server.rules.shotfacts import shot_facts
 
 from .conftest import TABLE, R, pocket_aim, set_table, straight_line
@@ -410,3 +411,46 @@ def test_a_kick_that_drops_the_8_calls_the_pocket_it_drops_in(eight: Game) -> No
     missed = Candidate(clamp_shot(option.angle + math.pi / 2, 1.0, 0.0, 0.0), 5, "kick", 8)
     search.score0(game.balls, missed)  # the 8 stays up: the call is left as it was
     assert missed.call == 5 and missed.value0 != WIN
+
+
+def test_late_in_a_rack_the_next_shot_search_tries_more_strokes(eight: Game, nine: Game) -> None:
+    """With two balls or fewer to pot before the game ball (the 8; in 9-ball the 9), the
+    pro's search of the next shot tries four speeds and five tips on each pot instead of
+    two and three. Those include the usual ones, so the best next pot it finds is never
+    worse; earlier in the rack, and for a level without `late_strokes`, nothing changes."""
+    pro = BY_NAME["pro"]
+    noise = np.random.default_rng(1).standard_normal((8, 4))
+    obj, cue = straight_line(3, 0.5, 0.6)
+    late = {0: cue, 1: obj, 2: (1.6, 0.9), 8: (2.0, 0.4), 9: (0.4, 0.3)}
+    early = {**late, 3: (0.9, 0.3), 4: (1.2, 1.0)}
+    placements = {"late": late, "early": early, "open": early}
+    values: dict[tuple[str, bool], float] = {}
+    sims: dict[tuple[str, bool], int] = {}
+    for name, placement in placements.items():
+        groups = None if name == "open" else SOLIDS_STRIPES
+        game = set_table(Game.from_dict(eight.to_dict()), placement, groups=groups)
+        for fine in (True, False):
+            level = replace(pro, late_strokes=fine)
+            search = Search(TABLE, game.rules, game.position(), 0, level, noise, noise[:0])
+            values[name, fine] = search._next_shot(search.pos, Ruling(), game.balls)
+            sims[name, fine] = search.sims
+    options = len(
+        pot_options(
+            TABLE,
+            set_table(eight, late, groups=SOLIDS_STRIPES).balls,
+            [1, 2],
+            pro.aim,
+            model=pro.chance_model,
+        )[:4]
+    )
+    assert 0 < options <= 4
+    assert sims["late", True] == options * 20 and sims["late", False] == options * 6
+    assert values["late", True] >= values["late", False] > -math.inf
+    for name in ("early", "open"):
+        assert sims[name, True] == sims[name, False] and values[name, True] == values[name, False]
+
+    game = set_table(nine, {0: cue, 1: obj, 5: (1.6, 0.9), 9: (2.0, 0.4)})
+    search = Search(TABLE, game.rules, game.position(), 0, pro, noise, noise[:0])
+    assert search._late(game.position())
+    game = set_table(nine, {0: cue, 1: obj, 4: (0.9, 0.3), 5: (1.6, 0.9), 9: (2.0, 0.4)})
+    assert not search._late(game.position())
