@@ -153,10 +153,15 @@ def start_server(
     )
 
 
+def _stat(path: Path) -> tuple[int, float]:
+    """(parent pid, user + system CPU seconds) from a process's /proc stat file."""
+    fields = path.read_text().rsplit(")", 1)[1].split()
+    return int(fields[1]), (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
 def cpu_seconds(pid: int) -> float:
     """User + system CPU time of a process (all its threads)."""
-    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
-    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+    return _stat(Path(f"/proc/{pid}/stat"))[1]
 
 
 def children_cpu_seconds(pid: int) -> float:
@@ -164,10 +169,10 @@ def children_cpu_seconds(pid: int) -> float:
     planners): how much of the machine the computer's thinking took."""
     total = 0.0
     for stat in Path("/proc").glob("[0-9]*/stat"):
-        with contextlib.suppress(OSError, IndexError, ValueError):
-            fields = stat.read_text().rsplit(")", 1)[1].split()
-            if int(fields[1]) == pid:
-                total += (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+        with contextlib.suppress(OSError, IndexError, ValueError):  # a process that ended
+            parent, seconds = _stat(stat)
+            if parent == pid:
+                total += seconds
     return total
 
 

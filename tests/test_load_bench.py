@@ -29,7 +29,7 @@ def test_the_cpu_of_a_child_process_is_counted_and_only_a_childs() -> None:
         used = children_cpu_seconds(os.getpid()) - before
         assert used >= 0.25, used  # /proc counts in clock ticks (1/100 s)
         assert cpu_seconds(child.pid) >= 0.25
-        # The child's own children: none, though the child is busy being counted above.
+        # Only a parent counts a process: the child, which started none, counts nothing.
         assert children_cpu_seconds(child.pid) == 0.0
     finally:
         assert child.stdin is not None

@@ -18,6 +18,7 @@ import numpy as np
 
 from ..codec import from_data, to_data
 from .params import DEFAULT_PARAMS, PhysicsParams
+from .physics.constants import POCKETED, ROLLING, SLIDING
 from .physics.tick import cels_of
 
 if TYPE_CHECKING:  # to mypy the codec's array types are values; pydantic reads the real ones
@@ -42,21 +43,16 @@ _SHAPES = (
 
 
 class MotionState(IntEnum):
-    """What a ball is doing; decides which friction law moves it."""
+    """What a ball is doing; decides which friction law moves it. The kernels' plain ints
+    (`physics.constants`) are the same values; array code compares with those, since
+    numpy compares an array with an IntEnum member (an int subclass) about 4 times slower
+    than with an int, and the search does it thousands of times a turn."""
 
     STATIONARY = 0
     SPINNING = 1  # in place, about the vertical axis only
     SLIDING = 2  # the contact point slips on the cloth
     ROLLING = 3  # no slip
     POCKETED = 4
-
-
-# The states as plain ints: numpy compares an array with an IntEnum member (an int
-# subclass) about 4 times slower than with an int, and the search does it thousands of
-# times a turn.
-_POCKETED = int(MotionState.POCKETED)
-_SLIDING = int(MotionState.SLIDING)
-_ROLLING = int(MotionState.ROLLING)
 
 
 @dataclass
@@ -135,12 +131,12 @@ class BallSet:
     @property
     def on_table(self) -> np.ndarray:
         """(N,) bool: the ball has not been pocketed."""
-        return self.states != _POCKETED
+        return self.states != POCKETED
 
     @property
     def moving(self) -> np.ndarray:
         """(N,) bool: the ball translates (sliding or rolling)."""
-        return (self.states == _SLIDING) | (self.states == _ROLLING)
+        return (self.states == SLIDING) | (self.states == ROLLING)
 
     def at_rest(self) -> bool:
         """No ball translates any more."""

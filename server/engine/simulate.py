@@ -7,8 +7,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .balls import CUE, BallSet, MotionState
+from .balls import CUE, BallSet
 from .params import DEFAULT_PARAMS, PhysicsParams
+from .physics.constants import POCKETED, SPINNING, STATIONARY
 from .physics.motion import classify
 from .physics.tick import empty_events, run_tick, run_to_rest_kernel
 from .results import EVENT_CODES, Event, EventKind, FrameSequence, ShotResult
@@ -58,7 +59,7 @@ def strike(
 ) -> Event:
     """Give the cue ball the shot's velocity and spin (in place); returns the strike event."""
     row = balls.index(CUE)
-    if balls.states[row] == _POCKETED:
+    if balls.states[row] == POCKETED:
         raise ValueError("the cue ball is not on the table")
     (vx, vy), (wx, wy, wz) = shot.cue_ball_motion(params.radius, params.cue_mass_ratio)
     balls.velocities[row] = (vx, vy)
@@ -69,9 +70,6 @@ def strike(
 
 _KIND_NAMES = tuple(kind.value for kind in EVENT_CODES)
 _STRIKE = EventKind.STRIKE.value
-_POCKETED = int(MotionState.POCKETED)
-_SPINNING = int(MotionState.SPINNING)
-_STATIONARY = int(MotionState.STATIONARY)
 
 
 def _events_from(rows: np.ndarray, ids: np.ndarray) -> list[Event]:
@@ -177,9 +175,9 @@ class ShotInMotion:
         positions, cels, on_table, rows, stalls = self._raw
         state = self.state
         events = self._events + _events_from(rows, state.ids)
-        spinning = state.states == _SPINNING
+        spinning = state.states == SPINNING
         state.spins[spinning] = 0.0
-        state.states[spinning] = _STATIONARY
+        state.states[spinning] = STATIONARY
         frames = FrameSequence(self.tick, positions, cels, on_table)
         return ShotResult(state.ids.copy(), frames, events, state, int(stalls))
 
