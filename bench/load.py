@@ -63,6 +63,8 @@ import httpx
 import websockets
 from websockets.asyncio.client import ClientConnection
 
+from server.priority import process_stat
+
 TICK_HZ = 120
 HEAD_STRING = 0.635
 TABLE = (2.54, 1.27)
@@ -153,26 +155,22 @@ def start_server(
     )
 
 
-def _stat(path: Path) -> tuple[int, float]:
-    """(parent pid, user + system CPU seconds) from a process's /proc stat file."""
-    fields = path.read_text().rsplit(")", 1)[1].split()
-    return int(fields[1]), (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
-
-
 def cpu_seconds(pid: int) -> float:
     """User + system CPU time of a process (all its threads)."""
-    return _stat(Path(f"/proc/{pid}/stat"))[1]
+    stat = process_stat(pid)
+    if stat is None:
+        raise ProcessLookupError(pid)
+    return stat[1]
 
 
 def children_cpu_seconds(pid: int) -> float:
     """User + system CPU time of the processes `pid` started (the server's computer
     planners): how much of the machine the computer's thinking took."""
     total = 0.0
-    for stat in Path("/proc").glob("[0-9]*/stat"):
-        with contextlib.suppress(OSError, IndexError, ValueError):  # a process that ended
-            parent, seconds = _stat(stat)
-            if parent == pid:
-                total += seconds
+    for entry in Path("/proc").glob("[0-9]*"):
+        stat = process_stat(int(entry.name))  # None: a process that ended meanwhile
+        if stat is not None and stat[0] == pid:
+            total += stat[1]
     return total
 
 

@@ -128,6 +128,10 @@ class Settings(BaseSettings):
     # Processes the computer opponent plans in (shared by every room; 0: a thread, which
     # holds the GIL the event loop needs for about half of each plan: docs/ai.md).
     computer_workers: Annotated[int, Field(ge=0, le=64)] = 1
+    # A plan whose planner processes got almost no CPU this long (other work at normal
+    # priority keeping every core busy: they run at the idle class) is planned in a
+    # thread instead, so that the computer still moves.
+    computer_starved: Annotated[float, Field(ge=0.5, le=600.0)] = 10.0
     ws_ping_interval: PositiveSeconds = 20.0
     ws_ping_timeout: PositiveSeconds = 20.0
     # permessage-deflate: ~5x less bandwidth, but ~45 % more server CPU at 200 rooms, which

@@ -39,11 +39,11 @@ class Hint(BaseModel):
     via: str | None = None  # a pot's route: "direct", "bank" (off a cushion), "combo", "carom"
 
 
-async def hint_for(live: LiveRoom, token: str, workers: int) -> dict[str, Any]:
+async def hint_for(live: LiveRoom, token: str, workers: int, starved: float) -> dict[str, Any]:
     """The `Hint` for the seat of `token` (planned off the event loop); a refusal is raised
     as the HTTP error the endpoint answers with."""
     try:
-        turn = await plan_hint(live.room, token, workers)
+        turn = await plan_hint(live.room, token, workers, starved)
     except ActionError as exc:
         raise HTTPException(
             _STATUS.get(exc.code, 409), {"code": exc.code, "message": exc.message}

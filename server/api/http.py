@@ -228,7 +228,7 @@ async def hint(
         return await routing.forward(cluster, node, "hint", args, timeout=CALL_TIMEOUT)
     if live is None:
         raise HTTPException(404, {"code": "unknown_room", "message": "No such room."})
-    return await hint_for(live, body.token, settings.computer_workers)
+    return await hint_for(live, body.token, settings.computer_workers, settings.computer_starved)
 
 
 __all__ = ["RoomSummary", "router"]

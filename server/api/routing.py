@@ -178,7 +178,12 @@ def install(app: FastAPI, cluster: Cluster) -> None:
 
     async def hint_here(args: dict[str, Any]) -> tuple[int, dict[str, Any]]:
         return await answer(
-            lambda: hint_for(local(args["room_id"]), args["token"], settings.computer_workers)
+            lambda: hint_for(
+                local(args["room_id"]),
+                args["token"],
+                settings.computer_workers,
+                settings.computer_starved,
+            )
         )
 
     cluster.inbox.handlers.update(

@@ -5,22 +5,25 @@ The search runs in a worker process (`POOL_COMPUTER_WORKERS`, shared by every ro
 server, at Linux's idle scheduling class), on the game's data. Not in a
 thread: about half of a plan is Python holding the GIL (the rules judging each simulated
 shot), which the event loop needs for every other room (`python -m bench.ai --only loop`
-measures the difference). With no workers
-(`POOL_COMPUTER_WORKERS=0`) it plans in a thread, and a worker process that dies falls
-back to that. A plan depends only on the position, the level and the room's seed, so a
-replayed position gets the same turn.
+measures the difference). With no workers (`POOL_COMPUTER_WORKERS=0`) it plans in a
+thread, and so does a plan whose planners die, or starve: get almost no CPU while other
+work at normal priority keeps every core busy (`POOL_COMPUTER_STARVED`). A plan depends
+only on the position, the level and the room's seed, so a replayed position gets the
+same turn wherever it is planned.
 """
 
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import logging
 import multiprocessing
 import os
+import signal
 import threading
 import time
 from collections.abc import Callable
-from concurrent.futures import Executor, ProcessPoolExecutor
+from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
 from typing import Any
@@ -31,7 +34,7 @@ from server.ai import Bot, Turn
 from server.ai.play import plan_data, warm_up
 from server.codec import to_data
 from server.engine import Shot
-from server.priority import run_when_idle
+from server.priority import process_stat, run_when_idle
 
 from .errors import ActionError
 from .room import Room
@@ -40,7 +43,13 @@ log = logging.getLogger(__name__)
 AIM_STEPS = 6  # aim relays while the cue swings round to the shot
 MAX_STEPS = 4  # turns in a row before handing back (decision, then its shot, ...)
 PARENT_CHECK = 1.0  # s between a planner's looks at whether its server is still there
+# A plan whose planners got less than this share of a core while it waited at least
+# `STARVED_AFTER` seconds (`POOL_COMPUTER_STARVED`) is planned in a thread (`_planned_in`).
+STARVED_AFTER = 10.0
+STARVED_SHARE = 0.1
+STARVED_CHECK = 0.5  # s between looks at the planners' CPU while a plan is out
 _pools: dict[int, ProcessPoolExecutor] = {}  # workers -> the pool this process shares
+_fallback = ThreadPoolExecutor(1, thread_name_prefix="starved-plan")  # one at a time
 _servers = 0  # running apps of this process that may plan in `_pools`
 _stopped = False  # the last app stopped: plans still asked for run in a thread
 
@@ -59,6 +68,30 @@ def _pool(workers: int) -> ProcessPoolExecutor:
     return pool
 
 
+def _pids(pool: ProcessPoolExecutor) -> list[int]:
+    """The pool's processes. Python keeps no public list of them before 3.14 (which adds
+    `terminate_workers` for what `_stop` does); `_processes` has held them since 3.2."""
+    return list(pool._processes or {})
+
+
+def _cpu_seconds(pool: ProcessPoolExecutor) -> float | None:
+    """CPU time the pool's processes have had; None when it cannot be read (no /proc, or
+    none started yet)."""
+    stats = [process_stat(pid) for pid in _pids(pool)]
+    seconds = [stat[1] for stat in stats if stat is not None]
+    return sum(seconds) if seconds else None
+
+
+def _stop(pool: ProcessPoolExecutor) -> None:
+    """End a pool's planners now. A plan they are still making is for a server that is
+    stopping (a restarted server plans the turn again), and waiting for it would take
+    minutes when they are starved."""
+    for pid in _pids(pool):
+        with contextlib.suppress(ProcessLookupError):
+            os.kill(pid, signal.SIGTERM)
+    pool.shutdown(wait=True, cancel_futures=True)
+
+
 def open_planners() -> None:
     """A server of this process starts (its rooms may use the shared planners)."""
     global _servers, _stopped
@@ -75,7 +108,7 @@ def close_planners() -> None:
     if _servers == 0:
         _stopped = True  # a seat still thinking must not start new ones
         for pool in _pools.values():
-            pool.shutdown(wait=True, cancel_futures=True)
+            _stop(pool)
         _pools.clear()
 
 
@@ -94,24 +127,70 @@ def _start_worker(server: int) -> None:
     the event loop's core, where they waited behind the loop: 1,000 rooms with 50 against
     the computer had a start p99 of 66-142 ms, at the idle class 54-61 ms
     (docs/ai.md). A core running only idle-class work counts as free; the computer's
-    thinking pause hides a plan that waits a little."""
+    thinking pause hides a plan that waits a little; one that waits on a starved planner
+    is planned in the server's process instead (`_planned_in`)."""
     run_when_idle()
     threading.Thread(target=_exit_with, args=(server,), daemon=True).start()
     warm_up()
 
 
-async def plan_turn(level: str, seed: int, game: dict[str, Any], seat: int, workers: int) -> Turn:
+async def plan_turn(
+    level: str,
+    seed: int,
+    game: dict[str, Any],
+    seat: int,
+    workers: int,
+    starved: float = STARVED_AFTER,
+) -> Turn:
     """`Bot(level, seed).plan` of the game data `game` for `seat`, off the event loop: in a
-    planner process when `workers` > 0, else in a thread."""
+    planner process when `workers` > 0, else in a thread. A planner process that dies, or
+    that gets almost no CPU for `starved` seconds, leaves the plan to a thread: the
+    computer then holds the GIL the rooms need for part of its plan, which beats a
+    computer that never moves."""
     loop = asyncio.get_running_loop()
     if workers > 0 and not _stopped:
-        pool: Executor = _pool(workers)
+        pool = _pool(workers)
+        future = loop.run_in_executor(pool, plan_data, level, seed, game, seat)
         try:
-            return await loop.run_in_executor(pool, plan_data, level, seed, game, seat)
+            if await _planned_in(future, pool, starved):
+                return future.result()
         except BrokenProcessPool:
-            log.error("a computer planner process died; planning in a thread this time")
-            _pools.pop(workers, None)
+            if not _stopped:  # else its server stopped it (`_stop`)
+                log.error("a computer planner process died; planning in a thread this time")
+                _pools.pop(workers, None)
+        else:
+            future.cancel()  # if it has not started; a started one ends unread
+            log.warning(
+                "the computer's planners got under %.0f %% of a core for %.0f s (the machine"
+                " is busy with other work); planning in a thread this time",
+                100 * STARVED_SHARE,
+                starved,
+            )
+            return await loop.run_in_executor(_fallback, plan_data, level, seed, game, seat)
     return await asyncio.to_thread(plan_data, level, seed, game, seat)
+
+
+async def _planned_in(future: asyncio.Future, pool: ProcessPoolExecutor, starved: float) -> bool:
+    """Wait for a plan sent to the planners: True once it is done, False once it has waited
+    `starved` seconds or more while the planners got under `STARVED_SHARE` of a core. At
+    Linux's idle class they get no CPU at all while work at normal priority keeps every
+    core busy; a backlog of plans keeps them busy, and a cold start compiles, so neither
+    counts as starving."""
+    loop = asyncio.get_running_loop()
+    since, cpu_since = loop.time(), _cpu_seconds(pool)
+    while True:
+        done, _ = await asyncio.wait({future}, timeout=STARVED_CHECK)
+        if done:
+            return True
+        now, cpu = loop.time(), _cpu_seconds(pool)
+        if cpu is None or cpu_since is None:  # unknown: never called starved
+            since, cpu_since = now, cpu
+            continue
+        waited = now - since
+        if waited >= starved and cpu - cpu_since < STARVED_SHARE * waited:
+            return False
+        if waited >= starved:  # they are moving: judge the last stretch from here on
+            since, cpu_since = now, cpu
 
 
 @dataclass
@@ -124,6 +203,7 @@ class ComputerSeat:
     level: str
     pause: float  # s of "thinking" before a turn is shown, at pace 1
     workers: int = 0  # planner processes (0: plan in a thread)
+    starved: float = STARVED_AFTER  # s a plan waits on starved planners before a thread takes it
     bot: Bot = field(init=False)
     task: asyncio.Task | None = field(default=None, init=False)
 
@@ -173,7 +253,9 @@ class ComputerSeat:
         game = to_data(match.game)  # the search works on its own copy
         started = asyncio.get_running_loop().time()
         try:
-            turn = await plan_turn(self.level, self.bot.seed, game, self.seat, self.workers)
+            turn = await plan_turn(
+                self.level, self.bot.seed, game, self.seat, self.workers, self.starved
+            )
         except Exception:
             log.exception("room %s: the computer could not plan", self.room.room_id)
             return False
@@ -204,7 +286,7 @@ HINT_LEVEL = Bot.LEVELS[-1]  # "Show me a shot" shows what the strongest level w
 _hinting: set[str] = set()  # rooms with a hint being planned (one at a time each)
 
 
-async def hint(room: Room, token: str, workers: int) -> Turn:
+async def hint(room: Room, token: str, workers: int, starved: float = STARVED_AFTER) -> Turn:
     """The strongest level's turn for the player of a practice table, planned off the event
     loop and not taken (the learner sees the ghost ball, aim, power and spin). One hint at
     a time per table, so a player cannot queue up the planners' time."""
@@ -220,6 +302,6 @@ async def hint(room: Room, token: str, workers: int) -> Turn:
         raise ActionError("hint_pending", "A hint for this table is on its way already.")
     _hinting.add(room.room_id)
     try:
-        return await plan_turn(HINT_LEVEL, room.seed, to_data(match.game), seat, workers)
+        return await plan_turn(HINT_LEVEL, room.seed, to_data(match.game), seat, workers, starved)
     finally:
         _hinting.discard(room.room_id)

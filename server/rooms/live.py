@@ -102,7 +102,12 @@ class LiveRoom:
         self._last_presence = -math.inf
         self.computers = {
             seat: ComputerSeat(
-                room, seat, level, settings.computer_pause, settings.computer_workers
+                room,
+                seat,
+                level,
+                settings.computer_pause,
+                settings.computer_workers,
+                settings.computer_starved,
             )
             for seat, level in room.computer.items()
         }

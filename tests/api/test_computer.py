@@ -5,7 +5,12 @@ from __future__ import annotations
 
 import asyncio
 import json
+import logging
+import os
+import subprocess
+import sys
 from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -45,7 +50,8 @@ def next_json(ws: WebSocketTestSession) -> dict[str, Any]:
             raise AssertionError(f"closed: {message}")
 
 
-def test_the_computer_takes_the_second_seat_and_plays_its_turn(client: TestClient):
+def computer_room(client: TestClient) -> tuple[str, str]:
+    """A room against the club level with Ana in the first seat: (room id, her token)."""
     created = client.post(
         "/api/rooms", json={"game": "eight_ball", "opponent": "club", "listed": False}
     )
@@ -53,29 +59,81 @@ def test_the_computer_takes_the_second_seat_and_plays_its_turn(client: TestClien
     room_id = created.json()["room_id"]
     ana = client.post(f"/api/rooms/{room_id}/join", json={"name": "Ana"}).json()
     assert ana["seat"] == 0  # the person breaks
+    return room_id, ana["token"]
+
+
+def play_until_the_computer_shoots(ws: WebSocketTestSession) -> tuple[list[dict], int]:
+    """Ana breaks and misses until the computer has played a shot: (the shot results, the
+    computer's aim relays seen)."""
+    while next_json(ws)["type"] != "presence":
+        pass
+    ws.send_json(BREAK_MESSAGE)  # the rack's break: legal, then a miss hands over
+    results: list[dict] = []
+    aims = 0
+    while 1 not in (r["outcome"]["shooter"] for r in results):
+        message = next_json(ws)
+        aims += message["type"] == "aim" and message["seat"] == 1
+        if message["type"] == "shot_result":
+            results.append(message)
+        if message["type"] != "state" or message["phase"] != "aiming" or not results:
+            continue
+        match = message["match"]
+        if match["turn"] == 0 and match["decision"] is None:  # Ana's turn again
+            if match["ball_in_hand"]:
+                ws.send_json({"type": "place_cue", "x": 0.5, "y": 0.6})
+            ws.send_json({"type": "shoot", "angle": 2.0, "speed": 3.0})
+    return results, aims
+
+
+def test_the_computer_takes_the_second_seat_and_plays_its_turn(
+    client: TestClient, caplog: pytest.LogCaptureFixture
+):
+    room_id, token = computer_room(client)
     room = client.get(f"/api/rooms/{room_id}").json()
     assert room["players"] == ["Ana", "Computer (club)"] and room["status"] == "playing"
-    with client.websocket_connect(f"/ws/rooms/{room_id}?token={ana['token']}") as ws:
-        while next_json(ws)["type"] != "presence":
-            pass
-        ws.send_json(BREAK_MESSAGE)  # the rack's break: legal, then a miss hands over
-        results = []
-        aims = 0
-        while len(results) < 3:
-            message = next_json(ws)
-            aims += message["type"] == "aim" and message["seat"] == 1
-            if message["type"] == "shot_result":
-                results.append(message)
-            if message["type"] != "state" or message["phase"] != "aiming" or not results:
-                continue
-            match = message["match"]
-            if match["turn"] == 0 and match["decision"] is None:  # Ana's turn again
-                if match["ball_in_hand"]:
-                    ws.send_json({"type": "place_cue", "x": 0.5, "y": 0.6})
-                ws.send_json({"type": "shoot", "angle": 2.0, "speed": 3.0})
-    shooters = [r["outcome"]["shooter"] for r in results]
-    assert 1 in shooters  # the computer shot
+    url = f"/ws/rooms/{room_id}?token={token}"
+    with (
+        caplog.at_level(logging.WARNING, "server.rooms.computer"),
+        client.websocket_connect(url) as ws,
+    ):
+        results, aims = play_until_the_computer_shoots(ws)
+    assert results[-1]["outcome"]["shooter"] == 1  # the computer shot
     assert aims >= 3  # and its cue was seen moving first
+    assert not caplog.records  # in its planner process: nothing starved it here
+
+
+@contextmanager
+def every_core_busy() -> Iterator[None]:
+    """A busy loop at normal priority on every core this process may use: the planners, at
+    Linux's idle class, get no CPU while these run."""
+    cores = len(os.sched_getaffinity(0))
+    loops = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(cores)]
+    try:
+        yield
+    finally:
+        for loop in loops:
+            loop.kill()
+            loop.wait()
+
+
+def test_the_computer_still_moves_when_other_work_starves_its_planner(
+    tmp_path: Path, caplog: pytest.LogCaptureFixture
+):
+    """Its planner process runs at the idle class so as never to slow the rooms; when
+    other work keeps every core busy it gets no CPU, and the turn is planned in a thread
+    of the server instead of never (before, a CI run beside a benchmark timed out here)."""
+    settings = settings_in(
+        tmp_path, computer_pause=0.0, shot_clock=600.0, computer_workers=1, computer_starved=2.0
+    )
+    app = create_app(settings, seeds=SeedSource.fixed(EIGHT_BALL))
+    log = caplog.at_level(logging.WARNING, "server.rooms.computer")
+    with log, TestClient(app) as client, every_core_busy():
+        room_id, token = computer_room(client)
+        with client.websocket_connect(f"/ws/rooms/{room_id}?token={token}") as ws:
+            results, _ = play_until_the_computer_shoots(ws)
+    assert results[-1]["outcome"]["shooter"] == 1
+    starved = [r.getMessage() for r in caplog.records if "planning in a thread" in r.getMessage()]
+    assert starved and "the machine is busy with other work" in starved[0]
 
 
 def test_the_computer_is_only_for_real_games_at_known_levels(client: TestClient):
