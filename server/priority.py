@@ -6,7 +6,7 @@ computer's planners, and a benchmark's flood standing in for clients on other ma
 busy, so the kernel woke the rooms' shot threads on the event loop's core, where they waited
 behind the loop. A core running only idle-class work counts as free. The price: while
 work at normal priority keeps every core busy, an idle-class process gets no CPU at all,
-so whoever waits on one watches how much CPU it gets (`cpu_seconds`).
+so whoever waits on one watches how much CPU it gets (`process_stat`).
 """
 
 from __future__ import annotations
