@@ -69,6 +69,7 @@ TICK_HZ = 120
 HEAD_STRING = 0.635
 TABLE = (2.54, 1.27)
 COMPUTER_LEVEL = "pro"  # the level of the computer in `--computer` rooms (the costliest)
+THREAD_PLAN_NOTE = "planning in a thread"  # the server's warning (server/rooms/computer.py)
 
 
 class CountingConnection(ClientConnection):
@@ -391,9 +392,13 @@ async def run(
         log = Path(tmp) / "server.log"
         proc = start_server(port, Path(tmp) / "bench.db", log, compression is not None)
         try:
-            return await drive(
+            result = await drive(
                 proc, base, rooms, seconds, compression, think, seed, computer, warmup
             )
+            # The server logs each computer plan it had to make in its own process (its
+            # planners starved of CPU, or dead): the rooms paid for those in GIL time.
+            result["plans_in_thread"] = log.read_text().count(THREAD_PLAN_NOTE)
+            return result
         except Exception:
             print(log.read_text()[-3000:], file=sys.stderr)
             raise
@@ -532,6 +537,7 @@ COLUMNS = [
     ("shot s", "shot_seconds", "{:.2f}"),
     ("server CPU %", "server_cpu", "{:.0f}"),
     ("planner CPU %", "planner_cpu", "{:.0f}"),
+    ("plans in thread", "plans_in_thread", "{:.0f}"),
     ("client CPU %", "client_cpu", "{:.0f}"),
     ("steal %", "steal_pct", "{:.0f}"),
     ("B/s/client", "bytes_per_s_client", "{:.0f}"),
