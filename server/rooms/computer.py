@@ -154,6 +154,9 @@ async def plan_turn(
         try:
             if await _planned_in(future, pool, starved):
                 return future.result()
+        except asyncio.CancelledError:
+            future.cancel()  # the seat stopped thinking (a concession, the room closing)
+            raise
         except BrokenProcessPool:
             if not _stopped:  # else its server stopped it (`_stop`)
                 log.error("a computer planner process died; planning in a thread this time")
