@@ -190,10 +190,10 @@ async def _planned_in(future: asyncio.Future, pool: ProcessPoolExecutor, starved
             since, cpu_since = now, cpu
             continue
         waited = now - since
-        if waited >= starved and cpu - cpu_since < STARVED_SHARE * waited:
-            return False
-        if waited >= starved:  # they are moving: judge the last stretch from here on
-            since, cpu_since = now, cpu
+        if waited >= starved:
+            if cpu - cpu_since < STARVED_SHARE * waited:
+                return False
+            since, cpu_since = now, cpu  # they are moving: judge the next stretch afresh
 
 
 @dataclass
