@@ -69,8 +69,8 @@ def _pool(workers: int) -> ProcessPoolExecutor:
 
 
 def _pids(pool: ProcessPoolExecutor) -> list[int]:
-    """The pool's processes. Python keeps no public list of them before 3.14 (which adds
-    `terminate_workers` for what `_stop` does); `_processes` has held them since 3.2."""
+    """The pool's processes. Python has no public list of them (3.14 adds
+    `terminate_workers` for what `_stop` does); its `_processes` maps pid to process."""
     return list(pool._processes or {})
 
 
