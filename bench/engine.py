@@ -3,7 +3,8 @@
     python -m bench.engine [--runs 30] [--seed 0] [--pooltool-python PATH]
 
 Prints the median wall time of `simulate` (cue ball on the head spot, 10 m/s straight at
-the apex, centre hit) with ticks and events, over `--runs` runs after one warm-up call
+the apex, centre hit) and of `settle` (the same ticks without the frames, as the computer's
+search runs them) with ticks and events, over `--runs` runs after one warm-up call
 (whose time, the numba compile or cache load, is printed too). When pooltool is importable,
 or an interpreter that has it is named by `--pooltool-python` (or $POOLTOOL_PYTHON),
 pooltool simulates the same break in the same run and the ratio is printed.
@@ -19,7 +20,7 @@ import subprocess
 import sys
 import time
 
-from server.engine import ENGINE_VERSION, TICK_HZ, Shot, Table, rack, simulate
+from server.engine import ENGINE_VERSION, TICK_HZ, Shot, Table, rack, settle, simulate
 
 POOLTOOL_SCRIPT = r"""
 import json, statistics, sys, time
@@ -77,7 +78,14 @@ def ours(runs: int, seed: int) -> dict:
         result = simulate(table, balls, shot)
         times.append(time.perf_counter() - t0)
     assert result is not None
+    settle(table, balls, shot)
+    settle_times = []
+    for _ in range(runs):
+        t0 = time.perf_counter()
+        settle(table, balls, shot)
+        settle_times.append(time.perf_counter() - t0)
     return {
+        "settle_ms": statistics.median(settle_times) * 1e3,
         "warm_s": warm,
         "median_ms": statistics.median(times) * 1e3,
         "min_ms": min(times) * 1e3,
@@ -125,6 +133,7 @@ def main(argv: list[str] | None = None) -> None:
         f"  simulate to rest, frames included: median {r['median_ms']:.2f} ms "
         f"(min {r['min_ms']:.2f}, max {r['max_ms']:.2f})"
     )
+    print(f"  settle to rest, no frames (the search's door): median {r['settle_ms']:.2f} ms")
     print(
         f"  {r['ticks']} ticks of 1/{TICK_HZ} s ({r['seconds']:.2f} s of play), "
         f"{r['events']} events, pocketed {r['pocketed']}"

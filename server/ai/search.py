@@ -15,7 +15,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from server.engine import CUE, MAX_SPEED, BallSet, Shot, Table, simulate
+from server.engine import CUE, MAX_SPEED, BallSet, Shot, Table, settle
 from server.rules.kinds import GameRules
 from server.rules.position import Position
 from server.rules.ruling import Ruling
@@ -186,7 +186,7 @@ class Search:
     def _simulate(self, before: BallSet, shot: Shot) -> tuple[ShotFacts, BallSet]:
         """One engine shot, counted against the budget: (what happened, where it stopped)."""
         self.sims += 1
-        result = simulate(self.table, before, shot)
+        result = settle(self.table, before, shot)
         return shot_facts(before, result), result.final
 
     def _judge(self, pos: Position, facts: ShotFacts, final: BallSet) -> tuple[Ruling, BallSet]:

@@ -6,9 +6,18 @@ No I/O, no asyncio: the server, the rules, the tests and the benchmarks all driv
 from .balls import CUE, BallSet, MotionState
 from .params import DEFAULT_PARAMS, PhysicsParams
 from .rack import rack, rack_slots
-from .results import Event, EventKind, Frame, FrameSequence, ShotResult
+from .results import Event, EventKind, Frame, FrameSequence, Settled, ShotResult
 from .shot import MAX_SPEED, MAX_TIP, Shot
-from .simulate import DEFAULT_TICK, TICK_HZ, ShotInMotion, run_to_rest, simulate, step, strike
+from .simulate import (
+    DEFAULT_TICK,
+    TICK_HZ,
+    ShotInMotion,
+    run_to_rest,
+    settle,
+    simulate,
+    step,
+    strike,
+)
 from .table import BALL_MASS, BALL_RADIUS, Cushion, Pocket, Table
 from .version import ENGINE_VERSION, PHYSICS_REVISION, engine_version
 
@@ -32,6 +41,7 @@ __all__ = [
     "MotionState",
     "PhysicsParams",
     "Pocket",
+    "Settled",
     "Shot",
     "ShotInMotion",
     "ShotResult",
@@ -40,6 +50,7 @@ __all__ = [
     "rack",
     "rack_slots",
     "run_to_rest",
+    "settle",
     "simulate",
     "step",
     "strike",

@@ -124,3 +124,16 @@ class ShotResult:
     def pocketed(self) -> list[int]:
         """Ids pocketed during the shot, in the order they dropped."""
         return [e.ids[0] for e in self.events if e.kind == EventKind.POCKET]
+
+
+@dataclass(frozen=True)
+class Settled:
+    """A shot simulated to rest without its frames (`settle`): what happened (`events`) and
+    where the balls stopped (`final`), as `ShotResult` has them, bit for bit. For callers
+    that never draw the shot, such as the computer's search."""
+
+    ids: np.ndarray
+    events: list[Event]
+    final: BallSet
+    duration: float
+    stalled_ticks: int = 0

@@ -11,8 +11,8 @@ from .balls import CUE, BallSet
 from .params import DEFAULT_PARAMS, PhysicsParams
 from .physics.constants import POCKETED, SPINNING, STATIONARY
 from .physics.motion import classify
-from .physics.tick import empty_events, run_tick, run_to_rest_kernel
-from .results import EVENT_CODES, Event, EventKind, FrameSequence, ShotResult
+from .physics.tick import empty_events, run_tick, run_to_rest_kernel, settle_kernel
+from .results import EVENT_CODES, Event, EventKind, FrameSequence, Settled, ShotResult
 from .shot import Shot
 from .table import Table
 
@@ -143,6 +143,14 @@ def _run_kernel(geo: _Geometry, s: BallSet, tick: float, params: np.ndarray) -> 
     )
 
 
+def _drop_residual_spin(state: BallSet) -> None:
+    """A ball that has stopped translating keeps spinning about the vertical a little while,
+    which cannot move it any more: the shot's final table drops that spin."""
+    spinning = state.states == SPINNING
+    state.spins[spinning] = 0.0
+    state.states[spinning] = STATIONARY
+
+
 class ShotInMotion:
     """A shot in three parts, so a server can run the long middle one in a thread without
     holding the GIL its event loop needs: the strike (here), `run()` (the whole tick loop,
@@ -175,9 +183,7 @@ class ShotInMotion:
         positions, cels, on_table, rows, stalls = self._raw
         state = self.state
         events = self._events + _events_from(rows, state.ids)
-        spinning = state.states == SPINNING
-        state.spins[spinning] = 0.0
-        state.states[spinning] = STATIONARY
+        _drop_residual_spin(state)
         frames = FrameSequence(self.tick, positions, cels, on_table)
         return ShotResult(state.ids.copy(), frames, events, state, int(stalls))
 
@@ -197,6 +203,41 @@ def simulate(
     motion = ShotInMotion(table, balls, shot, tick, params)
     motion.run()
     return motion.result()
+
+
+def settle(
+    table: Table,
+    balls: BallSet,
+    shot: Shot,
+    tick: float = DEFAULT_TICK,
+    params: PhysicsParams = DEFAULT_PARAMS,
+) -> Settled:
+    """`simulate` without the frames: the same events, final table and duration, bit for
+    bit, in about two thirds of the time for the short shots a search tries (a break, whose
+    many events cost the same either way, in five sixths). `balls` is not modified."""
+    state = balls.copy()
+    first = strike(state, shot, params)
+    geo = _geometry(table)
+    rows, stalls, ticks = settle_kernel(
+        state.positions,
+        state.velocities,
+        state.spins,
+        state.states,
+        state.phases,
+        state.pockets,
+        geo.cushions,
+        geo.jaws,
+        geo.pockets,
+        geo.centers,
+        geo.length,
+        geo.width,
+        params.array(),
+        float(tick),
+        int(MAX_SHOT_SECONDS / tick),
+    )
+    _drop_residual_spin(state)
+    events = [first, *_events_from(rows, state.ids)]
+    return Settled(state.ids.copy(), events, state, ticks * float(tick), int(stalls))
 
 
 def run_to_rest(

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from server.engine import CUE, BallSet, EventKind, ShotResult
+from server.engine import CUE, BallSet, EventKind, Settled, ShotResult
 
 RAIL_KINDS = (EventKind.CUSHION.value, EventKind.JAW.value)  # a pocket point is a rail too
 _BALL = EventKind.BALL.value  # read once: a shot's facts are read for every simulated shot
@@ -39,7 +39,7 @@ class ShotFacts:
         return bool(self.pocketed)
 
 
-def shot_facts(before: BallSet, result: ShotResult) -> ShotFacts:
+def shot_facts(before: BallSet, result: ShotResult | Settled) -> ShotFacts:
     """Facts of `result`, a shot played from the table `before`.
 
     Events give the order and the pockets; `result.final` is the authority on which balls

@@ -29,16 +29,20 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import pytest
 
 from server.codec import to_data
 from server.engine import (
+    DEFAULT_TICK,
     ENGINE_VERSION,
     BallSet,
     EventKind,
+    Settled,
     Shot,
     ShotResult,
     Table,
     rack,
+    settle,
     simulate,
 )
 
@@ -116,7 +120,7 @@ def state_digest(balls: BallSet) -> str:
     return h.hexdigest()
 
 
-def events_digest(result: ShotResult) -> str:
+def events_digest(result: ShotResult | Settled) -> str:
     """sha256 of every event as float64 little-endian (time, speed, kind code, ids, target)."""
     codes = {kind.value: i for i, kind in enumerate(EventKind)}
     rows = [
@@ -214,6 +218,19 @@ def test_the_physics_gives_the_golden_results() -> None:
             f"change is deliberate, regenerate with: {COMMAND}"
         )
     raise AssertionError("golden results changed:\n" + "\n".join(lines) + "\n" + advice)
+
+
+@pytest.mark.parametrize("case", CASES, ids=lambda case: case.name)
+def test_settling_without_frames_gives_the_golden_results(case: Case) -> None:
+    """`settle` (the search's door) runs the same ticks as `simulate` without recording
+    frames: the recorded results hold for it too, bit for bit."""
+    table = Table.pool("9ft")
+    settled = settle(table, case.balls(table), case.shot)
+    want = recorded()["cases"][case.name]["result"]
+    assert events_digest(settled) == want["events_digest"]
+    assert state_digest(settled.final) == want["final_digest"]
+    assert settled.stalled_ticks == want["stalled_ticks"]
+    assert settled.duration == want["ticks"] * DEFAULT_TICK
 
 
 def test_the_golden_file_records_this_engine_version() -> None:
