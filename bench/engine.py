@@ -5,7 +5,8 @@
 Prints the median wall time of `simulate` (cue ball on the head spot, 10 m/s straight at
 the apex, centre hit) and of `settle` (the same ticks without the frames, as the computer's
 search runs them) with ticks and events, over `--runs` runs after one warm-up call
-(whose time, the numba compile or cache load, is printed too). When pooltool is importable,
+(whose time, the numba compile or cache load, is printed too); then both doors' mean time
+a shot over 1,000 strokes like those the search tries. When pooltool is importable,
 or an interpreter that has it is named by `--pooltool-python` (or $POOLTOOL_PYTHON),
 pooltool simulates the same break in the same run and the ratio is printed.
 """
@@ -14,13 +15,29 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import statistics
 import subprocess
 import sys
 import time
+from collections.abc import Callable
 
-from server.engine import ENGINE_VERSION, TICK_HZ, Shot, Table, rack, settle, simulate
+import numpy as np
+
+from server.engine import (
+    CUE,
+    ENGINE_VERSION,
+    TICK_HZ,
+    BallSet,
+    Shot,
+    Table,
+    rack,
+    settle,
+    simulate,
+)
+
+SEARCH_SHOTS = 1000
 
 POOLTOOL_SCRIPT = r"""
 import json, statistics, sys, time
@@ -97,6 +114,37 @@ def ours(runs: int, seed: int) -> dict:
     }
 
 
+def search_shots(count: int, seed: int) -> list[tuple[Table, BallSet, Shot]]:
+    """Strokes like those the computer's search tries: from tables left by a break, any
+    direction, 0.5-5 m/s, tip within 0.3 R."""
+    rng = np.random.default_rng(seed)
+    table = Table.pool("9ft")
+    shots: list[tuple[Table, BallSet, Shot]] = []
+    rack_seed = 0
+    while len(shots) < count:
+        broken = simulate(table, rack("eight_ball", table, seed=rack_seed), Shot(0.0, 10.0)).final
+        rack_seed += 1
+        if CUE not in broken.on_table_ids():
+            continue
+        for _ in range(min(50, count - len(shots))):
+            tip = (float(rng.uniform(-0.3, 0.3)), float(rng.uniform(-0.3, 0.3)))
+            angle, speed = float(rng.uniform(-math.pi, math.pi)), float(rng.uniform(0.5, 5.0))
+            shots.append((table, broken, Shot(angle, speed, tip)))
+    return shots
+
+
+def per_shot_ms(run: Callable[..., object], shots: list, runs: int) -> float:
+    """Median over `runs` passes of the mean time per shot, in ms."""
+    run(*shots[0])
+    times = []
+    for _ in range(runs):
+        t0 = time.perf_counter()
+        for shot in shots:
+            run(*shot)
+        times.append((time.perf_counter() - t0) / len(shots))
+    return statistics.median(times) * 1e3
+
+
 def pooltool(runs: int, python: str | None) -> dict | None:
     interpreter = python
     if interpreter is None:
@@ -137,6 +185,12 @@ def main(argv: list[str] | None = None) -> None:
     print(
         f"  {r['ticks']} ticks of 1/{TICK_HZ} s ({r['seconds']:.2f} s of play), "
         f"{r['events']} events, pocketed {r['pocketed']}"
+    )
+    shots = search_shots(SEARCH_SHOTS, args.seed)
+    print(
+        f"  {SEARCH_SHOTS} strokes like the search's (tables left by a break, 0.5-5 m/s): "
+        f"simulate {per_shot_ms(simulate, shots, 5):.3f} ms a shot, "
+        f"settle {per_shot_ms(settle, shots, 5):.3f} ms (median of 5 passes)"
     )
     pt = pooltool(max(5, args.runs // 2), args.pooltool_python)
     if pt is None:

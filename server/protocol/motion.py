@@ -67,7 +67,7 @@ def _trace(
 
     Returns (times (S,), positions (S, N, 2), phases (S, N), on-table (S, N), forced
     (S, N): the ball takes part in an event at that sample, ticks, and the engine's
-    (frame positions, frame cels, frame on-table, event rows, stalled ticks))."""
+    (frame positions, frame cels, frame on-table, event rows, stalled ticks, ticks))."""
     n = pos.shape[0]
     frame_cap = 256
     frame_pos = np.empty((frame_cap, n, 2))
@@ -196,6 +196,7 @@ def _trace(
         frame_on[:ticks].copy(),
         rows[:n_rows].copy(),
         stalls,
+        ticks,
     )
     return (
         s_t[:k].copy(),

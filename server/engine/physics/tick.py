@@ -210,23 +210,30 @@ def run_to_rest_kernel(
     dt,
     max_ticks,
     event_capacity,
+    frames,
 ):
     """A whole shot in one compiled call, so a thread running it holds the GIL only to
     enter and to return (the server's event loop needs it for everything else).
 
-    The frame and event arrays grow by doubling.
-    Returns (frame_pos, frame_cels, frame_on, events, stalls)."""
+    With `frames` False no frame is recorded (the frame arrays come back empty): the ticks
+    are the same, so are the events and the final table, bit for bit. The computer's
+    search asks only where the balls stop, thousands of times a turn, and a frame every
+    tick cost about a third of its short shots.
+
+    The frame and event arrays grow by doubling. The event rows are not zeroed: only the
+    rows written are read.
+    Returns (frame_pos, frame_cels, frame_on, events, stalls, ticks)."""
     n = pos.shape[0]
-    cap = 256
+    cap = 256 if frames else 0
     frame_pos = np.empty((cap, n, 2))
     frame_cels = np.empty((cap, n), dtype=np.int64)
     frame_on = np.empty((cap, n), dtype=np.bool_)
-    events = np.zeros((max(event_capacity, MAX_EVENTS_PER_TICK + 128), 6))
+    events = np.empty((max(event_capacity, MAX_EVENTS_PER_TICK + 128), 6))
     ticks = 0
     n_ev = 0
     stalls = 0
     while ticks < max_ticks and any_moving(st):
-        if ticks == cap:
+        if frames and ticks == cap:
             cap *= 2
             frame_pos = _grown(frame_pos, cap)
             frame_cels = _grown(frame_cels, cap)
@@ -254,17 +261,20 @@ def run_to_rest_kernel(
         )
         if stalled:
             stalls += 1
-        frame_pos[ticks] = pos
-        cels_of(phase, st, frame_cels[ticks], p)
-        for i in range(n):
-            frame_on[ticks, i] = st[i] != POCKETED
+        if frames:
+            frame_pos[ticks] = pos
+            cels_of(phase, st, frame_cels[ticks], p)
+            for i in range(n):
+                frame_on[ticks, i] = st[i] != POCKETED
         ticks += 1
+    kept = ticks if frames else 0
     return (
-        frame_pos[:ticks].copy(),
-        frame_cels[:ticks].copy(),
-        frame_on[:ticks].copy(),
+        frame_pos[:kept].copy(),
+        frame_cels[:kept].copy(),
+        frame_on[:kept].copy(),
         events[:n_ev].copy(),
         stalls,
+        ticks,
     )
 
 
@@ -277,61 +287,3 @@ def _grown(a, rows):
 
 def empty_events(capacity: int) -> np.ndarray:
     return np.zeros((capacity, 6), dtype=np.float64)
-
-
-@njit(cache=True, nogil=True)
-def settle_kernel(
-    pos,
-    vel,
-    w,
-    st,
-    phase,
-    pocket_of,
-    cush,
-    jaws,
-    pockets,
-    centers,
-    length,
-    width,
-    p,
-    dt,
-    max_ticks,
-):
-    """`run_to_rest_kernel` without the frames: the same `run_tick` calls, so the same final
-    table and events bit for bit. Recording a frame every tick cost about a third of a
-    search's short shot, and a search that asks only where the balls stop runs thousands
-    of shots a turn.
-
-    The event rows start uninitialised and at the least size the tick needs free: only
-    written rows are returned, and zeroing a large buffer cost more than a short shot.
-    Returns (events, stalls, ticks)."""
-    events = np.empty((MAX_EVENTS_PER_TICK + 128, 6))
-    ticks = 0
-    n_ev = 0
-    stalls = 0
-    while ticks < max_ticks and any_moving(st):
-        if events.shape[0] - n_ev <= MAX_EVENTS_PER_TICK + 64:
-            events = _grown(events, 2 * events.shape[0])
-        n_ev, stalled = run_tick(
-            pos,
-            vel,
-            w,
-            st,
-            phase,
-            pocket_of,
-            cush,
-            jaws,
-            pockets,
-            centers,
-            length,
-            width,
-            p,
-            dt,
-            ticks * dt,
-            events,
-            n_ev,
-        )
-        if stalled:
-            stalls += 1
-        ticks += 1
-    return events[:n_ev].copy(), stalls, ticks
