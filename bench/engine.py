@@ -95,14 +95,8 @@ def ours(runs: int, seed: int) -> dict:
         result = simulate(table, balls, shot)
         times.append(time.perf_counter() - t0)
     assert result is not None
-    settle(table, balls, shot)
-    settle_times = []
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        settle(table, balls, shot)
-        settle_times.append(time.perf_counter() - t0)
     return {
-        "settle_ms": statistics.median(settle_times) * 1e3,
+        "settle_ms": per_shot_ms(settle, [(table, balls, shot)], runs),
         "warm_s": warm,
         "median_ms": statistics.median(times) * 1e3,
         "min_ms": min(times) * 1e3,
@@ -134,7 +128,7 @@ def search_shots(count: int, seed: int) -> list[tuple[Table, BallSet, Shot]]:
 
 
 def per_shot_ms(run: Callable[..., object], shots: list, runs: int) -> float:
-    """Median over `runs` passes of the mean time per shot, in ms."""
+    """Median over `runs` passes (after one warm-up shot) of the mean time a shot, in ms."""
     run(*shots[0])
     times = []
     for _ in range(runs):

@@ -132,7 +132,6 @@ class Settled:
     where the balls stopped (`final`), as `ShotResult` has them, bit for bit. For callers
     that never draw the shot, such as the computer's search."""
 
-    ids: np.ndarray
     events: list[Event]
     final: BallSet
     duration: float

@@ -226,7 +226,7 @@ def settle(
     )
     _drop_residual_spin(state)
     events = [first, *_events_from(rows, state.ids)]
-    return Settled(state.ids.copy(), events, state, ticks * float(tick), int(stalls))
+    return Settled(events, state, ticks * float(tick), int(stalls))
 
 
 def run_to_rest(
