@@ -122,11 +122,14 @@ def test_concede_then_rematch(client):
 def test_player_who_reconnects_within_grace_keeps_playing(settings):
     """Ben drops and comes back within the grace period. Then a second room is seated and
     nobody connects to it: its grace timers started after Ben's, so when it forfeits,
-    Ben's period is over too (no sleeping for a guessed while)."""
+    Ben's period is over too (no sleeping for a guessed while). Ana connects before Ben
+    takes the last seat, so her own grace never runs."""
     with make_client(settings, grace=1.0) as client:
-        room_id, ta, tb = seated_room(client, shot_clock=0)
+        room_id = create_room(client, shot_clock=0)
+        ta = join(client, room_id, "Ana")["token"]
         with connect(client, room_id, ta) as a:
             greet(a)
+            tb = join(client, room_id, "Ben")["token"]
             with connect(client, room_id, tb) as b:
                 greet(b)
             presence = receive_until(a, "presence")
@@ -147,10 +150,15 @@ def test_player_who_reconnects_within_grace_keeps_playing(settings):
 
 
 def test_player_who_stays_away_forfeits_a_frame_per_grace_period(settings):
+    """Ana is at the table before Ben takes the last seat: the grace periods start when
+    the room is full, so seated first and connected later than the short grace, Ana lost
+    a frame of her own (a loaded machine did that once)."""
     with make_client(settings, grace=0.3) as client:
-        room_id, ta, tb = seated_room(client, shot_clock=0, race_to=2)
+        room_id = create_room(client, shot_clock=0, race_to=2)
+        ta = join(client, room_id, "Ana")["token"]
         with connect(client, room_id, ta) as a:
             greet(a)
+            tb = join(client, room_id, "Ben")["token"]
             with connect(client, room_id, tb) as b:
                 greet(b)
             first = receive_until(a, "shot_result")[-1]
