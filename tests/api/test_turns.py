@@ -151,8 +151,8 @@ def test_player_who_reconnects_within_grace_keeps_playing(settings):
 
 def test_player_who_stays_away_forfeits_a_frame_per_grace_period(settings):
     """Ana is at the table before Ben takes the last seat: the grace periods start when
-    the room is full, so seated first and connected later than the short grace, Ana lost
-    a frame of her own (a loaded machine did that once)."""
+    the room is full, so a player seated first and slower to connect than the short grace
+    would forfeit a frame of her own."""
     with make_client(settings, grace=0.3) as client:
         room_id = create_room(client, shot_clock=0, race_to=2)
         ta = join(client, room_id, "Ana")["token"]
