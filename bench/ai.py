@@ -194,7 +194,8 @@ def report_paired(now: Outcomes, before: Outcomes, label: str) -> None:
 @dataclass
 class Counts:
     """Per player (by name): shots, pots (legal, a ball of theirs dropped and they kept
-    the table or won), fouls, safeties (shots planned as safeties or kicks), plan times."""
+    the table or won), fouls, safeties (shots planned as safeties or kicks), breaks and the
+    breaks after which they kept the table, plan times."""
 
     games: int = 0
     shots: dict[str, int] = field(default_factory=dict)
@@ -202,6 +203,8 @@ class Counts:
     pot_tries: dict[str, int] = field(default_factory=dict)
     fouls: dict[str, int] = field(default_factory=dict)
     safeties: dict[str, int] = field(default_factory=dict)
+    breaks: dict[str, int] = field(default_factory=dict)
+    breaks_kept: dict[str, int] = field(default_factory=dict)
     times: dict[str, list[float]] = field(default_factory=dict)  # wall clock per plan
     cpu: dict[str, list[float]] = field(default_factory=dict)  # CPU time per plan (one core)
     # Per pot tried: the chance its plan gave it (`Turn.chance`) and whether it dropped.
@@ -210,7 +213,16 @@ class Counts:
 
     def add(self, other: Counts) -> None:
         self.games += other.games
-        for name in ("shots", "pots", "pot_tries", "fouls", "safeties", "ends"):
+        for name in (
+            "shots",
+            "pots",
+            "pot_tries",
+            "fouls",
+            "safeties",
+            "breaks",
+            "breaks_kept",
+            "ends",
+        ):
             mine, theirs = getattr(self, name), getattr(other, name)
             for k, v in theirs.items():
                 mine[k] = mine.get(k, 0) + v
@@ -229,6 +241,9 @@ class Counts:
         self.bump("shots", who)
         if turn.kind in ("safety", "kick"):
             self.bump("safeties", who)
+        if turn.kind == "break":
+            self.bump("breaks", who)
+            self.bump("breaks_kept", who, int(made))
         if turn.kind == "pot":
             self.bump("pot_tries", who)
             self.bump("pots", who, int(made))
@@ -608,10 +623,13 @@ def report_counts(counts: Counts, names: list[str]) -> None:
         times = counts.times.get(who, []) or [0.0]
         cpu = counts.cpu.get(who, []) or [0.0]
         rate = f"{100 * pots / tries:.0f} %" if tries else "-"
+        breaks = counts.breaks.get(who, 0)
+        kept = f", kept the table after {counts.breaks_kept.get(who, 0)}/{breaks} breaks"
+        kept = kept if breaks else ""
         print(
             f"    {who:>9}: {shots / g:.1f} shots, {pots / g:.1f} pots ({rate} of tries), "
             f"{counts.fouls.get(who, 0) / g:.2f} fouls, {counts.safeties.get(who, 0) / g:.2f} "
-            f"safeties per game; plan CPU median {1e3 * statistics.median(cpu):.0f} ms, "
+            f"safeties per game{kept}; plan CPU median {1e3 * statistics.median(cpu):.0f} ms, "
             f"max {1e3 * max(cpu):.0f} ms (wall {1e3 * statistics.median(times):.0f} / "
             f"{1e3 * max(times):.0f} ms)"
         )

@@ -7,6 +7,7 @@ answer.
 
 from __future__ import annotations
 
+import itertools
 import math
 import zlib
 from dataclasses import dataclass, replace
@@ -14,21 +15,64 @@ from typing import Protocol
 
 import numpy as np
 
-from server.engine import CUE, BallSet, Shot
+from server.engine import CUE, BallSet, Shot, Table
 from server.rules import BEHIND_HEAD_STRING, Game
+from server.rules.kinds import GameRules
 from server.rules.placement import can_place
+from server.rules.position import Position
 
 from .aiming import clamp_shot, perturb
-from .geometry import best_chance, pockets_of
+from .geometry import best_chance, path_clear, pockets_of
 from .levels import BY_NAME, LEVELS, Level
 from .search import Candidate, Search
 
-BREAK_SPEEDS = (9.5, 11.5)
-BREAK_TIPS = ((0.0, -0.2),)
-BREAK_OFFSETS = (0.0, -0.22, 0.22)  # m either side of the long string
 HAND_DISTANCES = (0.18, 0.35, 0.6)  # m from the object ball to the cue ball
 HAND_ANGLES = (0.0, -0.3, 0.3)  # radians off a straight-in line
+# Ball in hand with no pot from any spot: spots round each legal ball with a clear line to
+# it, for the safeties (ranked by a pot chance of 0 everywhere, the spots were arbitrary).
+SAFETY_SPOT_DISTANCES = (0.3, 0.15, 0.5)  # m from the ball, the first tried first
+SAFETY_SPOT_DIRECTIONS = 24
 ACCEPT_ABOVE = 0.5  # take a table (push out, illegal break) with a pot at least this likely
+
+
+@dataclass(frozen=True)
+class BreakStroke:
+    """A break: the cue ball on the head string `offset` m beside the long string, hit
+    full on the head ball of the rack at `speed` m/s with the tip `height` above centre
+    (a fraction of the radius; below centre draws)."""
+
+    offset: float
+    speed: float
+    height: float = 0.0
+
+
+# By rack, tuned with the engine under the top level's noise (`python -m bench.breaks`): in
+# 8-ball the stroke that most often keeps the table with a pot to follow, in 9-ball the one
+# that most often keeps it (whoever plays next may push out, so the pot to follow counts
+# less).
+BREAKS = {"eight_ball": BreakStroke(0.35, 10.0), "nine_ball": BreakStroke(0.35, 12.0)}
+
+
+def break_spot(table: Table, offset: float) -> tuple[float, float]:
+    """Where a break's cue ball goes: just behind the head string, `offset` m to the side."""
+    return (min(table.head_string, table.length) - 0.01, table.width / 2 + offset)
+
+
+def head_ball(rules: GameRules, pos: Position, balls: BallSet, table: Table) -> int:
+    """The ball a break hits: the only legal one (9-ball: the 1), else the one nearest the
+    foot spot."""
+    legal = rules.legal_targets(pos)
+    if len(legal) == 1:
+        return legal[0]
+    on = set(balls.on_table_ids())
+    targets = [t for t in (legal or pos.object_balls) if t in on] or [b for b in on if b != CUE]
+    return min(targets, key=lambda t: math.dist(balls.position_of(t), table.foot_spot))
+
+
+def break_shot(balls: BallSet, head: int, stroke: BreakStroke) -> Shot:
+    """`stroke` played full on `head` from where the cue ball is."""
+    (cx, cy), (hx, hy) = balls.position_of(CUE), balls.position_of(head)
+    return clamp_shot(math.atan2(hy - cy, hx - cx), stroke.speed, 0.0, stroke.height)
 
 
 class NormalSource(Protocol):
@@ -175,7 +219,8 @@ class Bot:
         self, game: Game, search: Search, balls: BallSet, area: str | None
     ) -> list[tuple[float, float]]:
         """Legal cue-ball spots, best first by the geometric chance of the shot from there:
-        straight-in and gentle cut lines behind each ball's pots, then a grid."""
+        straight-in and gentle cut lines behind each ball's pots, then a grid. With no pot
+        from any of them, those in turn with spots for a safety (`_safety_spots`)."""
         table = game.table
         r = table.ball_radius
         pk = pockets_of(table)
@@ -214,11 +259,16 @@ class Bot:
             legal = [s for s in fine if can_place(table, balls, area, s[0], s[1])]
         sigma = self.level.aim
         model = self.level.chance_model
-
-        def quality(xy: tuple[float, float]) -> float:
-            return best_chance(table, balls, targets, sigma, cue_xy=xy, model=model)
-
-        scored = sorted(legal, key=lambda s: -quality(s))
+        quality = {
+            s: best_chance(table, balls, targets, sigma, cue_xy=s, model=model) for s in legal
+        }
+        scored = sorted(legal, key=lambda s: -quality[s])
+        if not scored or quality[scored[0]] <= 0.0:
+            # No pot from any spot by the geometry: the first generated spots (behind the
+            # balls on their blocked lines, where a simulation may still find a way) take
+            # turns with spots that face a legal ball clear of the others.
+            safe = self._safety_spots(game, balls, area, targets)
+            scored = [s for pair in itertools.zip_longest(scored, safe) for s in pair if s]
         # Keep the best few spots, but not three on the same line.
         chosen: list[tuple[float, float]] = []
         for s in scored:
@@ -228,54 +278,57 @@ class Bot:
                 break
         return chosen or legal[:1]
 
+    def _safety_spots(
+        self, game: Game, balls: BallSet, area: str | None, targets: list[int]
+    ) -> list[tuple[float, float]]:
+        """Legal spots round the legal balls from which the cue ball has a clear line to
+        one of them, at the middle distance first, the balls and directions interleaved."""
+        table = game.table
+        ids = balls.ids.tolist()
+        row = {b: i for i, b in enumerate(ids)}
+        on = balls.on_table.copy()
+        on[row[CUE]] = False  # the cue ball is in hand
+        positions = balls.positions
+        live = [t for t in targets if t in row and on[row[t]]]
+        spots = []
+        for d in SAFETY_SPOT_DISTANCES:
+            for k in range(SAFETY_SPOT_DIRECTIONS):
+                angle = 2 * math.pi * k / SAFETY_SPOT_DIRECTIONS
+                for t in live:
+                    ox, oy = balls.position_of(t)
+                    x, y = ox + d * math.cos(angle), oy + d * math.sin(angle)
+                    if not can_place(table, balls, area, x, y):
+                        continue
+                    i = row[t]
+                    if path_clear(x, y, ox, oy, positions, on, i, i, table.ball_radius):
+                        spots.append((x, y))
+        return spots
+
     # --- the break --------------------------------------------------------------------
     def _break_with_hand(
         self, game: Game, search: Search, balls: BallSet, area: str | None
     ) -> Turn:
-        table = game.table
-        x = min(table.head_string, table.length) - 0.01
-        spots = []
-        for dy in BREAK_OFFSETS:
-            xy = (x, table.width / 2 + dy)
-            if can_place(table, balls, area, *xy):
-                spots.append(xy)
-        if not spots:
-            spots = self._hand_spots(game, search, balls, area)[:1]
-        best: tuple[float, Candidate, tuple[float, float]] | None = None
-        for xy in spots:
-            cand = self._break(search, balls.with_ball(CUE, xy))
-            if best is None or cand.value > best[0]:
-                best = (cand.value, cand, xy)
-        assert best is not None
-        return self._turn(best[1], best[2])
+        """The rack's tuned break (`BREAKS`) from its spot, or from the mirrored spot, or
+        from the best ball-in-hand spot when both are taken."""
+        offset = BREAKS[game.rules.rack].offset
+        spots = [break_spot(game.table, dy) for dy in (offset, -offset)]
+        spots = [xy for xy in spots if can_place(game.table, balls, area, *xy)]
+        place = spots[0] if spots else self._hand_spots(game, search, balls, area)[0]
+        return self._turn(self._break(search, balls.with_ball(CUE, place)), place)
 
     def _break(self, search: Search, balls: BallSet) -> Candidate:
-        """The break from where the cue ball is: a full hit on the head ball of the rack."""
-        targets = search.targets(search.pos)
-        on = set(balls.on_table_ids())
-        targets = [t for t in targets if t in on] or [b for b in on if b != CUE]
-        cue = balls.position_of(CUE)
-        foot = search.table.foot_spot
-        head = min(targets, key=lambda t: math.dist(balls.position_of(t), foot))
-        if len(search.rules.legal_targets(search.pos)) == 1:
-            head = search.rules.legal_targets(search.pos)[0]
-        hx, hy = balls.position_of(head)
-        angle = math.atan2(hy - cue[1], hx - cue[0])
-        cands = [
-            Candidate(clamp_shot(angle, speed, *tip), None, "break", head)
-            for speed in BREAK_SPEEDS
-            for tip in BREAK_TIPS
-        ]
-        samples = search.noise[: max(2, len(search.noise) // 5)]
+        """The rack's tuned break from where the cue ball is, scored on a few noisy draws
+        for the chance it reports."""
+        head = head_ball(search.rules, search.pos, balls, search.table)
+        shot = break_shot(balls, head, BREAKS[search.rules.rack])
+        cand = Candidate(shot, None, "break", head)
         full = search.noise
-        search.noise = samples
+        search.noise = full[: max(2, len(full) // 5)]
         try:
-            for cand in cands:
-                search.score_noisy(balls, cand)
+            search.score_noisy(balls, cand)
         finally:
             search.noise = full
-        cands.sort(key=lambda c: -c.value)
-        return cands[0]
+        return cand
 
     # --- 9-ball push out --------------------------------------------------------------
     def _push_out(self, search: Search, balls: BallSet) -> Candidate | None:

@@ -9,6 +9,7 @@ from server.engine import Shot, ShotResult, simulate
 from server.rules import Game, Outcome
 
 from .bot import Bot, NormalSource, Turn
+from .geometry import best_chance, open_share
 from .levels import LEVELS
 
 
@@ -54,7 +55,11 @@ def plan_data(level: str, seed: int, game: dict[str, Any], seat: int) -> Turn:
 
 
 def warm_up() -> None:
-    """Load the compiled engine (numba's cache) and plan once, so a worker's first real plan
-    is as fast as any."""
+    """Load the compiled engine and the search's kernels (numba's cache) and plan once, so
+    a worker's first real plan is as fast as any. The kernels are called outright: the
+    break planned here need not reach them."""
     game = Game.new("eight_ball", ["a", "b"], seed=0)
     Bot(LEVELS[0]).plan(game, game.turn)
+    targets = game.position().object_balls
+    best_chance(game.table, game.balls, targets, Bot(LEVELS[-1]).level.aim)
+    open_share(game.table, game.balls, targets)

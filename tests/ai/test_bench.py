@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import re
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -20,12 +21,16 @@ from bench.ai import (
     rank_correlation,
     refit,
     report_chances,
+    report_counts,
     sign_test,
 )
-from server.ai import Bot, Turn
+from bench.breaks import break_once, strokes
+from bench.breaks import main as breaks_main
+from server.ai import Bot, Turn, play_turn
+from server.ai.bot import BREAKS, BreakStroke
 from server.ai.geometry import ChanceModel
 from server.engine import BALL_RADIUS
-from server.rules import Foul, Outcome
+from server.rules import Foul, Game, Outcome
 
 
 def test_the_sign_test_is_the_two_sided_binomial_tail() -> None:
@@ -146,3 +151,42 @@ def test_the_chance_refit_finds_the_model_the_rates_came_from() -> None:
     assert loss == log_loss(data[:, 5], data[:, 5])
     assert rank_correlation(data[:, 5], data[:, 5]) == pytest.approx(1.0)
     assert rank_correlation(-data[:, 5], data[:, 5]) < -0.999  # ties at the clip aside
+
+
+def test_bench_breaks_ranks_the_strokes_and_marks_the_computers_break(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    assert breaks_main(["--kind", "nine_ball", "--racks", "3", "--top", "2"]) == 0
+    out = capsys.readouterr().out
+    assert f"nine_ball, {len(strokes())} strokes x 3 racks (seeds 1000-1002)" in out
+    rows = [line for line in out.splitlines() if re.match(r"\s*\d+\s+\d\.\d\d", line)]
+    assert 2 <= len(rows) <= 3  # the best two, and the computer's own when it is not
+    marked = [row for row in rows if row.endswith("<- the computer's break")]
+    own = BREAKS["nine_ball"]
+    assert len(marked) == 1 and f"{own.offset:5.2f} {own.speed:5.1f}" in marked[0]
+
+
+def test_a_break_too_soft_to_open_the_rack_keeps_nothing() -> None:
+    soft = break_once("eight_ball", 1000, BreakStroke(0.0, 1.0), "pro")
+    assert (soft.breaks, soft.kept, soft.kept_with_pot, soft.won) == (1, 0, 0, 0)
+    tuned = [break_once("eight_ball", s, BREAKS["eight_ball"], "pro") for s in range(1000, 1010)]
+    assert sum(t.kept for t in tuned) >= 6
+    assert all(t.kept_with_pot <= t.kept for t in tuned)
+
+
+def test_the_counts_say_how_often_a_player_kept_the_table_after_breaking(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    counts = Counts(games=2)
+    for speed in (BREAKS["eight_ball"].speed, 1.0):  # the tuned break, and one too soft
+        game = Game.new("eight_ball", ["pro", "other"], seed=1001)
+        bot = Bot("pro", seed=1)
+        turn = bot.plan(game, 0)
+        assert turn.kind == "break" and turn.shot is not None
+        turn = replace(turn, shot=replace(turn.shot, speed=speed))
+        outcome, _ = play_turn(game, 0, turn)
+        assert outcome is not None
+        counts.tally("pro", turn, outcome)
+    assert (counts.breaks["pro"], counts.breaks_kept["pro"]) == (2, 1)
+    report_counts(counts, ["pro"])
+    assert "kept the table after 1/2 breaks" in capsys.readouterr().out
