@@ -289,17 +289,15 @@ class Bot:
         on = balls.on_table.copy()
         on[row[CUE]] = False  # the cue ball is in hand
         positions = balls.positions
-        live = [t for t in targets if t in row and on[row[t]]]
+        live = [(row[t], balls.position_of(t)) for t in targets if t in row and on[row[t]]]
         spots = []
         for d in SAFETY_SPOT_DISTANCES:
             for k in range(SAFETY_SPOT_DIRECTIONS):
                 angle = 2 * math.pi * k / SAFETY_SPOT_DIRECTIONS
-                for t in live:
-                    ox, oy = balls.position_of(t)
+                for i, (ox, oy) in live:
                     x, y = ox + d * math.cos(angle), oy + d * math.sin(angle)
                     if not can_place(table, balls, area, x, y):
                         continue
-                    i = row[t]
                     if path_clear(x, y, ox, oy, positions, on, i, i, table.ball_radius):
                         spots.append((x, y))
         return spots
