@@ -9,6 +9,7 @@ foul gives the opponent ball in hand.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Iterable
 from dataclasses import dataclass, field, replace
@@ -65,7 +66,12 @@ FINE_TIPS = (*TIPS, (0.0, 0.18), (0.0, -0.18), (0.3, -0.15), (-0.3, -0.15))
 LATE_BALLS = 2
 LATE_SPEED_FACTORS = (1.25, 1.8, 2.4, 3.0)
 LATE_LOOK_SIMS = LOOK_PAIRS * len(LATE_SPEED_FACTORS) * len(TIPS)  # what that search may take
-SAFETY_SPEEDS = (0.7, 1.4, 2.6)
+# Safeties: hits on a legal ball from full to thin (a fraction of the widest offset that
+# still hits it), soft to firm, with centre ball, draw and follow. Where the cue ball stops
+# is what hides it, so draw and follow (docs/ai.md, "Safety round").
+SAFETY_FRACTIONS = (-0.9, -0.6, -0.3, 0.0, 0.3, 0.6, 0.9)
+SAFETY_SPEEDS = (0.7, 1.1, 1.6, 2.6)
+SAFETY_HEIGHTS = (0.0, -0.35, 0.35)
 KICK_SPEEDS = (1.5, 2.6, 4.0)
 KICK_OFFSETS = (-2.0, -0.8, 0.0, 0.8, 2.0)  # degrees off the mirror-image line
 SWEEP_SPEEDS = (1.6, 3.2)
@@ -328,16 +334,18 @@ class Search:
         """Replace the quick estimate of the position a pot leaves by a search of the next
         shot from the tables the shot leaves: without noise and on the first
         `LOOK_LEAVES - 1` noisy draws (a leave that only works when the speed is exact
-        is worth less), averaged over those that pocket. False when the budget allowed
-        no search."""
+        is worth less), averaged over those that pocket. When none of those pockets (a
+        safety that pockets on some draws, not with the exact stroke), the next draws are
+        tried until one does: otherwise its pots would keep the quick estimate and
+        outrank the pots searched. False when the budget allowed no search."""
         pos = self.pos_for(cand)
-        shots = [cand.shot] + [
-            perturb(cand.shot, row, self.level) for row in self.noise[: LOOK_LEAVES - 1]
-        ]
+        first = LOOK_LEAVES - 1
+        shots = [cand.shot] + [perturb(cand.shot, row, self.level) for row in self.noise[:first]]
+        more = (perturb(cand.shot, row, self.level) for row in self.noise[first:])
         searched = False
         cand.base, cand.leaves = cand.value, []
-        for shot in shots:
-            if self.limit - self.sims < LOOK_SIMS:
+        for k, shot in enumerate(itertools.chain(shots, more)):
+            if self.limit - self.sims < LOOK_SIMS or (k >= len(shots) and cand.leaves):
                 break
             searched = True
             value, made, ruling, final = self.outcome(pos, balls, shot)
@@ -434,7 +442,8 @@ class Search:
         return _strokes(option, needs_call, speeds, tips)
 
     def safety_candidates(self, balls: BallSet) -> list[Candidate]:
-        """Hits on each legal ball, full to thin, soft to firm."""
+        """Hits on each of the four nearest legal balls, full to thin, soft to firm, with
+        centre ball, draw and follow."""
         cue = np.array(balls.position_of(CUE))
         r = self.table.ball_radius
         call = self.default_call(balls)
@@ -447,11 +456,12 @@ class Search:
             dx, dy = obj - cue
             dist = max(math.hypot(dx, dy), 2 * r + 1e-6)
             direct = math.atan2(dy, dx)
-            for frac in (-0.8, -0.4, 0.0, 0.4, 0.8):
+            for frac in SAFETY_FRACTIONS:
                 offset = math.asin(max(-1.0, min(1.0, frac * 2 * r / dist)))
                 for speed in SAFETY_SPEEDS:
-                    shot = clamp_shot(direct + offset, speed, 0.0, 0.0)
-                    out.append(Candidate(shot, call, "safety", t))
+                    for height in SAFETY_HEIGHTS:
+                        shot = clamp_shot(direct + offset, speed, 0.0, height)
+                        out.append(Candidate(shot, call, "safety", t))
         return out
 
     def kick_candidates(self, balls: BallSet) -> list[Candidate]:
@@ -532,10 +542,16 @@ class Search:
             if level.lookahead and best is not None and best.kind == "pot":
                 # A safety that sometimes pockets was valued by the quick estimate of what
                 # it leaves; the pots by the search of the next shot: compare like with like.
-                for cand in safe[:SAFETY_LOOKS]:
-                    if cand.pot_rate > 0:
-                        self.look_ahead(balls, cand)
+                # The best few are searched, then the best left while it is one unsearched.
+                looked = [c for c in safe[:SAFETY_LOOKS] if c.pot_rate > 0]
+                for cand in looked:
+                    self.look_ahead(balls, cand)
                 safe.sort(key=lambda c: -c.value)
+                while safe and safe[0].pot_rate > 0 and not any(safe[0] is c for c in looked):
+                    looked.append(safe[0])
+                    if not self.look_ahead(balls, safe[0]):
+                        break
+                    safe.sort(key=lambda c: -c.value)
                 best = self.pot_then_safe(chosen, safe) or best
             if safe and (best is None or safe[0].value > best.value):
                 best = safe[0]
@@ -545,8 +561,9 @@ class Search:
         """The best pot once a leave with no next pot is valued as the safety played from
         there: about what a safety now is worth (a pure safety is worth at most
         `GIVE_BASE`), plus a ball fewer left to pot. Without this the search preferred a
-        safety now to a sure pot followed by the same safety."""
-        pure = [c.value for c in safe if c.pot_rate == 0]
+        safety now to a sure pot followed by the same safety. When every safety searched
+        pockets sometimes (a ball near a pocket), the best of them stands in."""
+        pure = [c.value for c in safe if c.pot_rate == 0] or [c.value for c in safe[:1]]
         if not pure:
             return None
         floor = max(GIVE_UP, min(pure[0], GIVE_BASE) + SAFE_LATER)

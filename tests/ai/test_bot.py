@@ -10,7 +10,7 @@ import pytest
 
 from server.ai import LEVELS, Bot, Turn, play_turn
 from server.ai.aiming import clamp_shot, departure, perturb
-from server.ai.geometry import pot_options
+from server.ai.geometry import best_chance, pot_options
 from server.ai.levels import BY_NAME
 from server.ai.search import (
     FEW_POTS,
@@ -180,6 +180,31 @@ def test_snooker_gets_a_safety_or_kick_not_a_foul(eight: Game) -> None:
     assert turn.kind in ("safety", "kick")
     outcome, _ = play_turn(game, 0, turn)
     assert outcome is not None and not outcome.fouls
+
+
+def test_a_safety_is_found_where_the_old_grid_of_safeties_found_none(eight: Game) -> None:
+    """The 2, solids' last ball, has no pot; the stripes have pots from most of the table.
+    Softer, thinner, drawn and followed hits find a safety that leaves the stripes a poor
+    shot at best; with the old grid (three speeds, centre ball) the plan gambled on a
+    power pot it gave 27 %."""
+    placement = {
+        0: (0.571, 0.787),
+        2: (1.749, 0.773),
+        8: (2.464, 1.207),
+        10: (1.903, 0.336),
+        11: (2.093, 0.594),
+        12: (2.0, 0.636),
+        14: (2.169, 0.329),
+        15: (2.479, 0.055),
+    }
+    game = set_table(eight, placement, groups=SOLIDS_STRIPES)
+    sigma = math.radians(0.125)
+    assert not pot_options(TABLE, game.balls, [2], sigma)
+    turn = Bot(Bot.LEVELS[-1]).plan(game, 0)
+    assert turn.kind == "safety"
+    outcome, _ = play_turn(game, 0, turn)
+    assert outcome is not None and not outcome.fouls and game.turn == 1
+    assert best_chance(TABLE, game.balls, [10, 11, 12, 14, 15], sigma) < 0.15
 
 
 def test_a_sure_pot_that_leaves_no_next_shot_beats_a_safety_now(eight: Game) -> None:
