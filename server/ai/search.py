@@ -9,7 +9,6 @@ foul gives the opponent ball in hand.
 
 from __future__ import annotations
 
-import itertools
 import math
 from collections.abc import Iterable
 from dataclasses import dataclass, field, replace
@@ -339,15 +338,13 @@ class Search:
         tried until one does: otherwise its pots would keep the quick estimate and
         outrank the pots searched. False when the budget allowed no search."""
         pos = self.pos_for(cand)
-        first = LOOK_LEAVES - 1
-        shots = [cand.shot] + [perturb(cand.shot, row, self.level) for row in self.noise[:first]]
-        more = (perturb(cand.shot, row, self.level) for row in self.noise[first:])
         searched = False
         cand.base, cand.leaves = cand.value, []
-        for k, shot in enumerate(itertools.chain(shots, more)):
-            if self.limit - self.sims < LOOK_SIMS or (k >= len(shots) and cand.leaves):
+        for k, row in enumerate([None, *self.noise]):  # the exact stroke, then the draws
+            if self.limit - self.sims < LOOK_SIMS or (k >= LOOK_LEAVES and cand.leaves):
                 break
             searched = True
+            shot = cand.shot if row is None else perturb(cand.shot, row, self.level)
             value, made, ruling, final = self.outcome(pos, balls, shot)
             if not made or ruling.winner is not None:
                 continue
