@@ -4,11 +4,16 @@ nothing goes straight in (or when a combination wins the game)."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
+
+import numpy as np
 
 from server.ai import Bot, play_turn
 from server.ai.aiming import aim_carom, aimed, kiss_miss
 from server.ai.geometry import pot_options, speed_for
 from server.ai.indirect import bank_options, carom_options, combo_options
+from server.ai.levels import BY_NAME
+from server.ai.search import Search
 from server.engine import simulate
 from server.rules import Game
 
@@ -49,8 +54,14 @@ def test_with_no_straight_pot_the_pro_banks_and_the_exact_stroke_drops(eight: Ga
     """No straight pot on the 1. The banks the geometry finds go off one cushion (the long
     way into the top side pocket, 46 % under the pro's noise); the grid of safeties also
     finds a double off both long cushions into the bottom side pocket, 67 %, and the plan
-    takes that. Either way the 1 meets a cushion before it drops, with the exact stroke."""
+    takes that. Either way the 1 meets a cushion before it drops, with the exact stroke.
+    Without the safeties the pro's best shot is the one-cushion bank."""
     game = set_table(eight, BANK_TABLE, groups=SOLIDS_STRIPES)
+    no_safeties = replace(BY_NAME["pro"], safeties=False)
+    noise = np.random.default_rng(1).standard_normal((no_safeties.samples, 4))
+    search = Search(TABLE, game.rules, game.position(), 0, no_safeties, noise, noise[:0])
+    bank = search.best_shot(game.balls)
+    assert bank.kind == "pot" and bank.via == "bank" and bank.target == 1, bank
     turn = Bot("pro").plan(game, 0)
     assert turn.target == 1 and (turn.chance or 0.0) > 0.4, turn
     assert turn.kind == "safety" or turn.via == "bank", turn
