@@ -33,6 +33,7 @@ HAND_ANGLES = (0.0, -0.3, 0.3)  # radians off a straight-in line
 SAFETY_SPOT_DISTANCES = (0.3, 0.15, 0.5)  # m from the ball, the first tried first
 SAFETY_SPOT_DIRECTIONS = 24
 ACCEPT_ABOVE = 0.5  # take a table (push out, illegal break) with a pot at least this likely
+SAY_POT_FROM = 0.5  # a safety or kick that pockets at least this often is reported as a pot
 
 
 @dataclass(frozen=True)
@@ -164,16 +165,23 @@ class Bot:
         return Search(game.table, game.rules, game.position(), seat, self.level, noise, confirm)
 
     def _turn(self, cand: Candidate, place: tuple[float, float] | None, push: bool = False) -> Turn:
+        kind, target, pocket = cand.kind, cand.target, cand.pocket
+        via = cand.via if kind == "pot" else None
+        if kind in ("safety", "kick") and cand.drop and cand.pot_rate >= SAY_POT_FROM:
+            # A stroke of the safeties' or kicks' grid that pockets a ball most of the time
+            # is a pot: the hint and the counts say so.
+            kind = "pot"
+            target, pocket, via = cand.drop
         return Turn(
             push_out=push,
             place=(float(place[0]), float(place[1])) if place is not None else None,
             call=cand.call,
             shot=cand.shot,
-            kind=cand.kind,
-            target=cand.target,
-            pocket=cand.pocket,
+            kind=kind,
+            target=target,
+            pocket=pocket,
             chance=cand.pot_rate,
-            via=cand.via if cand.kind == "pot" else None,
+            via=via,
         )
 
     def _from_here(

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from server.engine import CUE, MAX_SPEED, BallSet, Shot, Table, settle
+from server.engine.results import Event
 from server.rules.kinds import GameRules
 from server.rules.position import Position
 from server.rules.ruling import Ruling
@@ -108,6 +109,25 @@ def _strokes(
     ]
 
 
+def route(events: list[Event], ball: int, first_contact: int | None) -> str:
+    """How `ball` reached its pocket, by the shot's events (`PotOption.via`'s names):
+    "combo" when the cue ball hit another ball first, "bank" when `ball` met a cushion
+    before it dropped, "carom" when it met another object ball, else "direct"."""
+    if first_contact != ball:
+        return "combo"
+    via = "direct"
+    for event in events:
+        if ball not in event.ids:
+            continue
+        if event.kind == "pocket":
+            break
+        if event.kind == "cushion":
+            via = "bank"
+        elif event.kind == "ball" and CUE not in event.ids and via == "direct":
+            via = "carom"
+    return via
+
+
 @dataclass
 class Candidate:
     """A stroke being considered. value0: its score without noise; value: with noise."""
@@ -126,6 +146,8 @@ class Candidate:
     # (value of the leave, value of the best next pot there or -inf when there is none).
     base: float = 0.0
     leaves: list[tuple[float, float]] = field(default_factory=list)
+    # A safety or kick whose exact stroke pockets a ball legally: (ball, pocket, route).
+    drop: tuple[int, int, str] | None = None
 
     def revalue(self, floor: float) -> None:
         """The value with `floor` for a leave whose best next pot is worth less (what
@@ -179,7 +201,7 @@ class Search:
     ) -> tuple[float, bool, Ruling, BallSet]:
         """Simulate `shot` from `before` played in `pos`: (value, pocketed legally, ruling,
         table after)."""
-        facts, stopped = self._simulate(before, shot)
+        facts, stopped, _ = self._simulate(before, shot)
         ruling, final = self._judge(pos, facts, stopped)
         return (
             self.value_of(pos, ruling, final, facts.pocketed),
@@ -188,11 +210,12 @@ class Search:
             final,
         )
 
-    def _simulate(self, before: BallSet, shot: Shot) -> tuple[ShotFacts, BallSet]:
-        """One engine shot, counted against the budget: (what happened, where it stopped)."""
+    def _simulate(self, before: BallSet, shot: Shot) -> tuple[ShotFacts, BallSet, list[Event]]:
+        """One engine shot, counted against the budget: (what happened, where it stopped,
+        its events)."""
         self.sims += 1
         result = settle(self.table, before, shot)
-        return shot_facts(before, result), result.final
+        return shot_facts(before, result), result.final, result.events
 
     def _judge(self, pos: Position, facts: ShotFacts, final: BallSet) -> tuple[Ruling, BallSet]:
         """The rules' ruling on a simulated shot and the table after it (balls re-spotted)."""
@@ -248,9 +271,11 @@ class Search:
 
     def score0(self, balls: BallSet, cand: Candidate) -> None:
         """The stroke's value without noise. A safety or kick on the 8 that drops it in
-        another pocket than the one called would lose: it calls that pocket instead."""
+        another pocket than the one called would lose: it calls that pocket instead. A
+        safety or kick that pockets a ball legally records the ball, pocket and route
+        (`Candidate.drop`), so that the turn can say it is a pot."""
         pos = self.pos_for(cand)
-        facts, stopped = self._simulate(balls, cand.shot)
+        facts, stopped, events = self._simulate(balls, cand.shot)
         ruling, final = self._judge(pos, facts, stopped)
         cand.value0 = self.value_of(pos, ruling, final, facts.pocketed)
         if cand.value0 == LOSS and cand.kind != "pot" and cand.call is not None:
@@ -260,6 +285,9 @@ class Search:
                 pos = self.pos_for(cand)
                 ruling, final = self._judge(pos, facts, stopped)
                 cand.value0 = self.value_of(pos, ruling, final, facts.pocketed)
+        if cand.kind != "pot" and facts.pocketed and self._made(ruling, facts.pocketed):
+            ball = facts.pocketed[0]
+            cand.drop = (ball, facts.pockets[ball], route(events, ball, facts.first_contact))
 
     def score_noisy(self, balls: BallSet, cand: Candidate) -> None:
         pos = self.pos_for(cand)

@@ -13,9 +13,10 @@ from server.ai.aiming import aim_carom, aimed, kiss_miss
 from server.ai.geometry import pot_options, speed_for
 from server.ai.indirect import bank_options, carom_options, combo_options
 from server.ai.levels import BY_NAME
-from server.ai.search import Search
+from server.ai.search import Search, route
 from server.engine import simulate
 from server.rules import Game
+from server.rules.shotfacts import shot_facts
 
 from .conftest import TABLE, pocket_aim, set_table
 
@@ -54,8 +55,9 @@ def test_with_no_straight_pot_the_pro_banks_and_the_exact_stroke_drops(eight: Ga
     """No straight pot on the 1. The banks the geometry finds go off one cushion (the long
     way into the top side pocket, 46 % under the pro's noise); the grid of safeties also
     finds a double off both long cushions into the bottom side pocket, 67 %, and the plan
-    takes that. Either way the 1 meets a cushion before it drops, with the exact stroke.
-    Without the safeties the pro's best shot is the one-cushion bank."""
+    takes that, reported as the bank it is (not as a safety). Either way the 1 meets a
+    cushion before it drops, with the exact stroke. Without the safeties the pro's best
+    shot is the one-cushion bank."""
     game = set_table(eight, BANK_TABLE, groups=SOLIDS_STRIPES)
     no_safeties = replace(BY_NAME["pro"], safeties=False)
     noise = np.random.default_rng(1).standard_normal((no_safeties.samples, 4))
@@ -64,15 +66,39 @@ def test_with_no_straight_pot_the_pro_banks_and_the_exact_stroke_drops(eight: Ga
     assert bank.kind == "pot" and bank.via == "bank" and bank.target == 1, bank
     turn = Bot("pro").plan(game, 0)
     assert turn.target == 1 and (turn.chance or 0.0) > 0.4, turn
-    assert turn.kind == "safety" or turn.via == "bank", turn
+    assert turn.kind == "pot" and turn.via == "bank", turn
     assert turn.shot is not None
     events = simulate(TABLE, game.balls, turn.shot).events
     kinds = [e.kind for e in events if 1 in e.ids]
     assert "cushion" in kinds and "pocket" in kinds
     assert kinds.index("cushion") < kinds.index("pocket")
+    assert [e.target for e in events if e.kind == "pocket" and 1 in e.ids] == [turn.pocket]
     outcome, _ = play_turn(game, 0, turn)
     assert outcome is not None and 1 in outcome.pocketed and outcome.continues
     assert not outcome.fouls
+
+
+def test_a_shots_route_is_read_from_its_events(eight: Game, nine: Game) -> None:
+    """`route` names how a ball reached its pocket from the engine's events: what the turn
+    reports when a stroke of the safeties' grid pockets a ball."""
+    cue, one, nine_ball = _diagonal(0.95, 0.55, 0.3)
+    straight = set_table(eight, {0: cue, 1: nine_ball, 8: (0.5, 0.3)}, groups=SOLIDS_STRIPES)
+    combo = set_table(nine, {0: cue, 1: one, 9: nine_ball, 5: (0.5, 0.3)})
+    for game, ball, via in ((straight, 1, "direct"), (combo, 9, "combo")):
+        aim = math.atan2(nine_ball[1] - cue[1], nine_ball[0] - cue[0])
+        result = simulate(TABLE, game.balls, aimed(aim, 2.0, 0.0, 0.0))
+        facts = shot_facts(game.balls, result)
+        assert ball in facts.pocketed and facts.pockets[ball] == 3
+        assert route(result.events, ball, facts.first_contact) == via
+    bank = set_table(
+        Game.new("eight_ball", ["ana", "bot"], seed=3), BANK_TABLE, groups=SOLIDS_STRIPES
+    )
+    shot = Bot("pro").plan(bank, 0).shot
+    assert shot is not None
+    result = simulate(TABLE, bank.balls, shot)
+    facts = shot_facts(bank.balls, result)
+    assert facts.first_contact == 1 and 1 in facts.pocketed
+    assert route(result.events, 1, facts.first_contact) == "bank"
 
 
 def test_a_combination_on_the_nine_wins_the_game(nine: Game) -> None:
