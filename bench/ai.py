@@ -424,16 +424,13 @@ def loop_report(rooms: int, workers: int, seconds: float, seed: int) -> None:
 CALIBRATE_TRIALS = 30  # noisy strokes per configuration
 
 
-def pot_rates(configs: int, seed: int, crowd: int = 0) -> np.ndarray:
-    """Random pots (cue ball, object ball and pocket anywhere the geometry allows, and
-    `crowd` other balls anywhere, the pot unblocked), each played `CALIBRATE_TRIALS` times
-    with the top level's noise (centre ball, 1.8 or 2.4 times the speed that just reaches,
-    aimed for the throw as the computer aims): rows of (d1, d2, cut, side pocket, cos of
-    the approach to the mouth, measured rate, the fitted chance `pot_options` gives, which
-    counts the balls beside the paths, and the least clearance of another ball beside
-    either path, in metres)."""
+def pot_rates(configs: int, seed: int) -> np.ndarray:
+    """Random one-ball pots (cue ball, object ball and pocket anywhere the geometry allows),
+    each played `CALIBRATE_TRIALS` times with the top level's noise (centre ball, 1.8 or 2.4
+    times the speed that just reaches, aimed for the throw as the computer aims): rows of
+    (d1, d2, cut, side pocket, cos of the approach to the mouth, measured rate)."""
     from server.ai.aiming import aim_for_throw, aimed, perturb
-    from server.ai.geometry import FASTFIZ, pockets_of
+    from server.ai.geometry import pockets_of
     from server.engine import BallSet, Table, simulate
 
     table = Table.pool("9ft")
@@ -447,21 +444,11 @@ def pot_rates(configs: int, seed: int, crowd: int = 0) -> np.ndarray:
         cx, cy = rng.uniform(2 * r, table.length - 2 * r), rng.uniform(2 * r, table.width - 2 * r)
         if math.dist((ox, oy), (cx, cy)) < 3 * r:
             continue
-        placed = {CUE: (cx, cy), 1: (ox, oy)}
-        for ball in range(2, 2 + crowd):
-            xy = (rng.uniform(r, table.length - r), rng.uniform(r, table.width - r))
-            if all(math.dist(xy, other) > 2 * r for other in placed.values()):
-                placed[ball] = xy
-        balls = BallSet.place(placed)
+        balls = BallSet.place({CUE: (cx, cy), 1: (ox, oy)})
         options = pot_options(table, balls, [1], level.aim)
         if not options:
             continue
         o = options[int(rng.integers(len(options)))]
-        fitted = next(
-            f.chance
-            for f in pot_options(table, balls, [1], level.aim, model=FASTFIZ)
-            if f.pocket == o.pocket
-        )
         factor = (1.8, 2.4)[int(rng.integers(2))]
         shot = aimed(o.angle, min(speed_for(o) * factor, 0.85 * 12.0), 0.0, 0.0)
         shot, _ = aim_for_throw(table, balls, shot, 1, o.pocket)
@@ -476,32 +463,8 @@ def pot_rates(configs: int, seed: int, crowd: int = 0) -> np.ndarray:
             )
         ux, uy = pk.aims[o.pocket][0] - ox, pk.aims[o.pocket][1] - oy
         cos_in = (ux * pk.outward[o.pocket][0] + uy * pk.outward[o.pocket][1]) / math.hypot(ux, uy)
-        ghost = (ox - 2 * r * ux / math.hypot(ux, uy), oy - 2 * r * uy / math.hypot(ux, uy))
-        others = [xy for ball, xy in placed.items() if ball not in (CUE, 1)]
-        clearance = min(
-            [_clearance((ox, oy), tuple(pk.aims[o.pocket]), xy, r) for xy in others]
-            + [_clearance((cx, cy), ghost, xy, r) for xy in others]
-            + [math.inf]
-        )
-        rows.append(
-            (o.d1, o.d2, o.cut, pk.side[o.pocket], cos_in, made / CALIBRATE_TRIALS)
-            + (fitted, clearance)
-        )
+        rows.append((o.d1, o.d2, o.cut, pk.side[o.pocket], cos_in, made / CALIBRATE_TRIALS))
     return np.array(rows)
-
-
-def _clearance(
-    a: tuple[float, float], b: tuple[float, float], xy: tuple[float, float], r: float
-) -> float:
-    """How far the ball at `xy` is from touching a ball travelling a->b (m; inf when it is
-    not beside the path)."""
-    length = math.dist(a, b)
-    ux, uy = (b[0] - a[0]) / length, (b[1] - a[1]) / length
-    px, py = xy[0] - a[0], xy[1] - a[1]
-    along = px * ux + py * uy
-    if along <= 0 or along > length:
-        return math.inf
-    return abs(uy * px - ux * py) - 2 * r
 
 
 @njit(cache=True)
@@ -565,41 +528,24 @@ def refit(data: np.ndarray, aim: float, r: float) -> tuple[float, ChanceModel]:
     return best
 
 
-NEAR = 0.01  # m: a pot with another ball this close beside either path (`calibrate --crowd`)
-
-
-def calibrate(configs: int, seed: int, fit: bool = False, crowd: int = 0) -> None:
+def calibrate(configs: int, seed: int, fit: bool = False) -> None:
     """Measure pot rates under the top level's noise and compare the plain geometric
     chance (at the aim sigma position play plans with) with the fitted model
     (`geometry.FASTFIZ`): log-loss, rates by distance, and how well each orders the
-    likely pots (what position play compares); `fit` also refits the model on the grid.
-    With `crowd` other balls on the table, it also compares the fitted chance with and
-    without the room the balls beside the paths leave (`geometry.side_room`)."""
+    likely pots (what position play compares); `fit` also refits the model on the grid."""
     from server.ai.geometry import FASTFIZ, GEOMETRIC, MIN_AIM_SIGMA
 
     t0 = time.perf_counter()
-    data = pot_rates(configs, seed, crowd)
+    data = pot_rates(configs, seed)
     aim, r = Bot(LEVELS[-1]).level.aim, 0.028575
     plain = model_rates(data, GEOMETRIC, max(aim, MIN_AIM_SIGMA), r)
     fitted = model_rates(data, FASTFIZ, aim, r)
     rate = data[:, 5]
     print(
         f"pot chance vs the engine ({configs} pots x {CALIBRATE_TRIALS} noisy strokes, "
-        f"{crowd} other balls, {time.perf_counter() - t0:.0f} s): log-loss per pot plain "
+        f"{time.perf_counter() - t0:.0f} s): log-loss per pot plain "
         f"{log_loss(plain, rate):.2f}, fitted {log_loss(fitted, rate):.2f}"
     )
-    if crowd:
-        roomy = np.clip(data[:, 6], 1e-4, 1 - 1e-4)
-        near = data[:, 7] < NEAR
-        for name, m in (("all pots", np.ones(len(data), dtype=bool)), ("near", near)):
-            if m.any():
-                print(
-                    f"  {name} ({int(m.sum())}; near: another ball within {1e3 * NEAR:.0f} mm "
-                    f"beside a path): measured {rate[m].mean():.3f}, fitted without the "
-                    f"balls beside the paths {fitted[m].mean():.3f} (log-loss "
-                    f"{log_loss(fitted[m], rate[m]):.2f}), with them {roomy[m].mean():.3f} "
-                    f"(log-loss {log_loss(roomy[m], rate[m]):.2f})"
-                )
     easy = (plain >= EASY) | (fitted >= EASY)
     print(
         f"  rank correlation with the measured rates: all pots plain "
@@ -726,7 +672,6 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seconds", type=float, default=10.0, help="per mode (loop)")
     parser.add_argument("--configs", type=int, default=1200, help="pots measured (calibrate)")
     parser.add_argument("--fit", action="store_true", help="refit the chance model (calibrate)")
-    parser.add_argument("--crowd", type=int, default=0, help="other balls on the table (calibrate)")
     parser.add_argument("--save", help="write each rack's and game's outcome by seed (JSON)")
     parser.add_argument("--paired", help="compare seed by seed with a file --save wrote")
     args = parser.parse_args(argv)
@@ -757,7 +702,7 @@ def main(argv: list[str] | None = None) -> int:
         won = match("eight_ball", LEVELS[-1], "greedy", args.games, args.seed, args.jobs)
         outcomes["greedy"] = won
     if "calibrate" in parts:
-        calibrate(args.configs, args.seed, args.fit, args.crowd)
+        calibrate(args.configs, args.seed, args.fit)
     if "loop" in parts:
         loop_report(args.rooms, args.workers, args.seconds, args.seed)
     if "ladder" in parts:

@@ -29,8 +29,7 @@ class ChanceModel:
 
     The object ball leaves at an error of sigma_obj = sqrt((aim_scale * d1 * sigma_aim /
     (2R cos cut))^2 + floor^2 + (cut * sin cut)^2) radians, against the mouth's clean window
-    widened by `jaw` metres (narrowed by `side` metres for a side pocket), and on each side
-    no wider than the room the balls beside its path leave (`side_room`). `floor` and `cut`
+    widened by `jaw` metres (narrowed by `side` metres for a side pocket). `floor` and `cut`
     are what the tip error (squirt, throw) adds whatever the distance; measured at the
     FastFiz noise and scaled by the level's tip sigma.
     """
@@ -153,41 +152,6 @@ def path_clear(
 
 
 @njit(cache=True, inline="always")
-def side_room(
-    ax: float,
-    ay: float,
-    bx: float,
-    by: float,
-    positions: np.ndarray,
-    on: np.ndarray,
-    skip_a: int,
-    skip_b: int,
-    r: float,
-) -> tuple[float, float]:
-    """How far (radians) a ball sent from a towards b may turn to its left and to its right
-    before it touches another ball on the way (rows `skip_a` and `skip_b` aside): for each
-    ball beside the path, its clearance over its distance along it. A path clear by a few
-    millimetres is blocked by a small error; the blocking check alone called it open."""
-    length = max(math.sqrt((bx - ax) ** 2 + (by - ay) ** 2), 1e-9)
-    ux, uy = (bx - ax) / length, (by - ay) / length
-    left, right = math.inf, math.inf
-    for k in range(len(positions)):
-        if not on[k] or k == skip_a or k == skip_b:  # noqa: SIM109 (numba)
-            continue
-        px, py = positions[k, 0] - ax, positions[k, 1] - ay
-        along = px * ux + py * uy
-        if along <= 0.0 or along > length:
-            continue
-        lateral = uy * px - ux * py  # > 0: to the right of the path
-        room = max(abs(lateral) - 2 * r, 0.0) / along
-        if lateral > 0:
-            right = min(right, room)
-        else:
-            left = min(left, room)
-    return left, right
-
-
-@njit(cache=True, inline="always")
 def clean_window(mouth: float, cos_in: float, r: float, jaw: float) -> float:
     """Half the lateral room a ball has to drop through a mouth of width `mouth` that it
     approaches at `cos_in` to the pocket's normal, widened by `jaw`."""
@@ -199,14 +163,6 @@ def drop_chance(window: float, dist2: float, sigma_obj: float) -> float:
     """The chance a ball sent `dist2` to the pocket with an angle error of `sigma_obj`
     (normal, radians) stays within `window` of the mouth's centre."""
     return math.erf((window / dist2) / (sigma_obj * math.sqrt(2.0)))
-
-
-@njit(cache=True, inline="always")
-def turn_chance(up: float, down: float, sigma: float) -> float:
-    """The chance a normal angle error of `sigma` (radians) stays between -`down` and
-    `up`: `drop_chance` when the room is the same on both sides."""
-    scale = sigma * math.sqrt(2.0)
-    return 0.5 * (math.erf(up / scale) + math.erf(down / scale))
 
 
 @njit(cache=True, inline="always")
@@ -251,9 +207,8 @@ def _pot_kernel(
     """(feasible, chance, cue angle, d1, d2, cos cut), each (T, P), for the balls `rows`:
     ghost-ball aim at each pocket's mouth, rejected when too thin a cut, too steep an
     approach, a ghost ball off the bed or any ball within a ball's width of either path;
-    the chance is that of the object ball's angle error staying within the mouth's clean
-    window and clear of the balls beside its path (`side_room`). Compiled: the search
-    calls it for every simulated outcome (the table it leaves)."""
+    the chance is that of the object ball's angle error against the mouth's clean window.
+    Compiled: the search calls it for every simulated outcome (the table it leaves)."""
     n_t, n_p = len(rows), len(aims)
     ok = np.zeros((n_t, n_p), dtype=np.bool_)
     chance = np.zeros((n_t, n_p))
@@ -292,14 +247,7 @@ def _pot_kernel(
             s_aim = ghost_error(dist1, sigma, cc, r, aim_scale)
             sin_cut = math.sqrt(max(1.0 - cc * cc, 0.0))
             sigma_obj = object_sigma(s_aim, sin_cut, floor, cut_sigma, 0.0)
-            # The object ball's turn (to its left, positive) must stay inside the mouth's
-            # window and clear of the balls beside its path. (The cue ball's own error is
-            # too small for the balls beside its path to matter: in the engine a ball 1 mm
-            # clear of it cost 0-5 points of pot rate.)
-            to_mouth = window / dist2
-            left, right = side_room(ox, oy, aims[p, 0], aims[p, 1], positions, on, cue_row, row, r)
-            up, down = min(to_mouth, left), min(to_mouth, right)
-            chance[i, p] = turn_chance(up, down, sigma_obj)
+            chance[i, p] = drop_chance(window, dist2, sigma_obj)
     return ok, chance, angle, d1, d2, cos_cut
 
 

@@ -45,18 +45,7 @@ SAFETY_BELOW = 0.3
 SAFETY_SHARE = 0.3  # of a turn's simulations kept for safeties and kicks
 SAFETY_LOOKS = 3  # best safeties that pocket sometimes, searched a shot ahead like the pots
 LOOK_PAIRS, LOOK_SPEEDS, LOOK_TIPS = 4, 2, 3  # the next-shot search of the lookahead
-# The leaves searched per looked-ahead pot: the exact stroke and the stroke played at
-# -sqrt(3) and +sqrt(3) sigma of the level's speed error, weighted 2/3, 1/6 and 1/6 (the
-# three-point Gauss-Hermite rule: the mean of a smooth function of a normal error). The
-# speed error is what moves the cue ball most; two random draws, the same for every
-# candidate, often both fell near the exact stroke and called a leave safe that a softer
-# or firmer stroke spoils (docs/ai.md, "Sigma-point round").
-LOOK_POINTS: tuple[tuple[float, float], ...] = (
-    (0.0, 2 / 3),
-    (-math.sqrt(3), 1 / 6),
-    (math.sqrt(3), 1 / 6),
-)
-LOOK_LEAVES = len(LOOK_POINTS)
+LOOK_LEAVES = 3  # leaves searched per looked-ahead pot: the exact one and two noisy ones
 GIVE_UP = GIVE_BASE - GIVE_SCALE * 0.4  # the table given up to a 40 % shot: a missed next
 # pot, or a leave with no next pot while the safeties are not known yet
 SAFE_LATER = 0.1  # a safety played after a pot, above one played now (a ball fewer to pot)
@@ -154,10 +143,9 @@ class Candidate:
     value: float = -math.inf
     pot_rate: float = 0.0
     # Lookahead: the value before the next shot was searched, and for each leave searched
-    # (value of the leave, value of the best next pot there or -inf when there is none,
-    # the leave's weight).
+    # (value of the leave, value of the best next pot there or -inf when there is none).
     base: float = 0.0
-    leaves: list[tuple[float, float, float]] = field(default_factory=list)
+    leaves: list[tuple[float, float]] = field(default_factory=list)
     # A safety or kick whose exact stroke pockets a ball legally: (ball, pocket, route).
     drop: tuple[int, int, str] | None = None
 
@@ -165,8 +153,7 @@ class Candidate:
         """The value with `floor` for a leave whose best next pot is worth less (what
         playing safe from there is worth)."""
         if self.leaves:
-            weight = sum(w for _, _, w in self.leaves)
-            gain = sum(w * (max(nxt, floor) - v) for v, nxt, w in self.leaves) / weight
+            gain = sum(max(nxt, floor) - v for v, nxt in self.leaves) / len(self.leaves)
             self.value = self.base + self.pot_rate * gain
 
 
@@ -372,25 +359,24 @@ class Search:
 
     def look_ahead(self, balls: BallSet, cand: Candidate) -> bool:
         """Replace the quick estimate of the position a pot leaves by a search of the next
-        shot from the tables the shot leaves: the exact stroke and the stroke a little
-        soft and a little firm (`LOOK_POINTS`: a leave that only works when the speed is
-        exact is worth less), a weighted mean over those that pocket. When none of those
-        pockets (a safety that pockets on some draws, not with the exact stroke), the
-        noisy draws are tried until one does: otherwise its pots would keep the quick
-        estimate and outrank the pots searched. False when the budget allowed no search."""
+        shot from the tables the shot leaves: without noise and on the first
+        `LOOK_LEAVES - 1` noisy draws (a leave that only works when the speed is exact
+        is worth less), averaged over those that pocket. When none of those pockets (a
+        safety that pockets on some draws, not with the exact stroke), the next draws are
+        tried until one does: otherwise its pots would keep the quick estimate and
+        outrank the pots searched. False when the budget allowed no search."""
         pos = self.pos_for(cand)
         searched = False
         cand.base, cand.leaves = cand.value, []
-        points = [(np.array([0.0, z, 0.0, 0.0]), w) for z, w in LOOK_POINTS]
-        for k, (row, weight) in enumerate([*points, *((row, 1.0) for row in self.noise)]):
+        for k, row in enumerate([None, *self.noise]):  # the exact stroke, then the draws
             if self.limit - self.sims < LOOK_SIMS or (k >= LOOK_LEAVES and cand.leaves):
                 break
             searched = True
-            shot = cand.shot if not row.any() else perturb(cand.shot, row, self.level)
+            shot = cand.shot if row is None else perturb(cand.shot, row, self.level)
             value, made, ruling, final = self.outcome(pos, balls, shot)
             if not made or ruling.winner is not None:
                 continue
-            cand.leaves.append((value, self._next_shot(pos, ruling, final), weight))
+            cand.leaves.append((value, self._next_shot(pos, ruling, final)))
         cand.revalue(GIVE_UP)
         return searched
 

@@ -21,9 +21,8 @@ from server.ai.search import (
     Search,
 )
 from server.codec import to_data
-from server.engine import CUE, MAX_SPEED, MAX_TIP, BallSet, Shot, simulate
+from server.engine import CUE, MAX_SPEED, MAX_TIP, Shot, simulate
 from server.rules import ANYWHERE, BEHIND_HEAD_STRING, Decision, Game
-from server.rules.position import Position
 from server.rules.ruling import Ruling
 from server.rules.shotfacts import shot_facts
 
@@ -531,40 +530,3 @@ def test_late_in_a_rack_the_next_shot_search_tries_more_strokes(eight: Game, nin
     assert search._late(game.position())
     game = set_table(nine, {0: cue, 1: obj, 4: (0.9, 0.3), 5: (1.6, 0.9), 9: (2.0, 0.4)})
     assert not search._late(game.position())
-
-
-def test_the_lookahead_searches_the_exact_stroke_and_a_soft_and_a_firm_one(
-    eight: Game, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    """The next shot is searched from the leaves of the exact stroke and of the stroke
-    sqrt(3) sigma of speed softer and firmer (the three-point Gauss-Hermite rule, weights
-    2/3, 1/6, 1/6): a leave that only the exact speed gets right is worth less. Two random
-    draws, shared by every candidate, often both fell near the exact speed."""
-    pro = BY_NAME["pro"]
-    obj, cue = straight_line(3, 0.5, 0.6)
-    game = set_table(eight, {0: cue, 1: obj, 2: (1.6, 0.9), 9: (0.4, 0.3)}, groups=SOLIDS_STRIPES)
-    noise = np.random.default_rng(1).standard_normal((8, 4))
-    search = Search(TABLE, game.rules, game.position(), 0, pro, noise, noise[:0])
-    centre = [c for c in search.pot_candidates(game.balls, 1) if c.shot.tip == (0.0, 0.0)]
-    (cand,) = search.refine(game.balls, centre[2:3], 1)  # 1.8 times the least speed
-    played: list[float] = []
-    outcome = search.outcome
-
-    def recording(
-        pos: Position, before: BallSet, shot: Shot
-    ) -> tuple[float, bool, Ruling, BallSet]:
-        if before is game.balls:  # the strokes from the table itself, not the next shots
-            played.append(shot.speed)
-        return outcome(pos, before, shot)
-
-    monkeypatch.setattr(search, "outcome", recording)
-    assert search.look_ahead(game.balls, cand)
-    step = math.sqrt(3) * pro.speed
-    assert played == pytest.approx(
-        [cand.shot.speed, cand.shot.speed - step, cand.shot.speed + step]
-    )
-    assert [w for _, _, w in cand.leaves] == pytest.approx([2 / 3, 1 / 6, 1 / 6])
-    assert all(nxt > -math.inf for _, nxt, _ in cand.leaves)  # the 2 is on from each leave
-    weight = sum(w for _, _, w in cand.leaves)
-    gain = sum(w * (max(n, -1.0) - v) for v, n, w in cand.leaves) / weight
-    assert cand.value == pytest.approx(cand.base + cand.pot_rate * gain)
