@@ -10,7 +10,9 @@ from `--seed`) with the same noise draws, and the rules judge each break. Printe
 first by what the kind's break is chosen on: the share of breaks that keep the table
 (a ball down, no foul), that keep it with a pot to follow (the breaker's best pot at least
 50 % likely under the level's noise), that foul, and that win the game (9-ball: the 9 on
-the break). Shares with a 95 % Wilson interval; the computer's own stroke is marked.
+the break), and how open each leaves the rack (`open_share` of the balls left, the game
+ball aside, averaged). Shares with a 95 % Wilson interval; the computer's own stroke is
+marked.
 """
 
 from __future__ import annotations
@@ -27,7 +29,7 @@ import numpy as np
 from bench.ai import _map, wilson
 from server.ai import LEVELS, Bot
 from server.ai.bot import BREAKS, BreakStroke, break_shot, break_spot, head_ball
-from server.ai.geometry import best_chance
+from server.ai.geometry import best_chance, open_share
 from server.engine import simulate
 from server.rules import Game
 
@@ -47,6 +49,7 @@ class Tally:
     kept_with_pot: int = 0
     fouls: int = 0
     won: int = 0
+    open_sum: float = 0.0  # `open_share` of the balls left after each break, summed
 
     def add(self, other: Tally) -> None:
         self.breaks += other.breaks
@@ -54,6 +57,7 @@ class Tally:
         self.kept_with_pot += other.kept_with_pot
         self.fouls += other.fouls
         self.won += other.won
+        self.open_sum += other.open_sum
 
     def measure(self, kind: str) -> int:
         return self.kept_with_pot if CHOSEN_ON[kind] == "kept with a pot" else self.kept
@@ -79,7 +83,16 @@ def break_once(kind: str, seed: int, stroke: BreakStroke, level: str) -> Tally:
         chance = best_chance(game.table, game.balls, targets, level_.aim, model=level_.chance_model)
         pot = chance >= FOLLOW_UP
     won = game.over and game.winner == 0
-    return Tally(1, int(kept), int(pot), int(bool(outcome.fouls)), int(won))
+    return Tally(1, int(kept), int(pot), int(bool(outcome.fouls)), int(won), spread(game))
+
+
+def spread(game: Game) -> float:
+    """How open the break left the rack (`open_share` of the object balls on the table,
+    the game ball left out): a packed rack is what a runout after the break is lost on
+    (docs/ai.md, "Spread round")."""
+    game_ball = 8 if game.rules.kind == "eight_ball" else 9
+    balls = [b for b in game.position().object_balls if b != game_ball]
+    return open_share(game.table, game.balls, balls)
 
 
 def _job(args: tuple[str, list[int], BreakStroke, str]) -> Tally:
@@ -103,7 +116,8 @@ def pct(k: int, n: int) -> str:
 def report(kind: str, results: Iterable[tuple[BreakStroke, Tally]], top: int) -> None:
     ranked = sorted(results, key=lambda st: -st[1].measure(kind))
     own = BREAKS[kind]
-    print(f"  {'offset':>6} {'speed':>5} {'tip':>5}   {'kept':15} {'kept with a pot':15} fouls")
+    head = f"{'offset':>6} {'speed':>5} {'tip':>5}   {'kept':15} {'kept with a pot':15}"
+    print(f"  {head} fouls   open")
     for rank, (stroke, t) in enumerate(ranked, 1):
         if rank > top and stroke != own:
             continue
@@ -111,7 +125,7 @@ def report(kind: str, results: Iterable[tuple[BreakStroke, Tally]], top: int) ->
         print(
             f"{rank:3d} {stroke.offset:5.2f} {stroke.speed:5.1f} {stroke.height:5.2f}   "
             f"{pct(t.kept, t.breaks)} {pct(t.kept_with_pot, t.breaks)} "
-            f"{100 * t.fouls / t.breaks:4.1f} %{mark}"
+            f"{100 * t.fouls / t.breaks:4.1f} %  {t.open_sum / t.breaks:.3f}{mark}"
         )
 
 

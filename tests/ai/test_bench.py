@@ -164,6 +164,9 @@ def test_bench_breaks_ranks_the_strokes_and_marks_the_computers_break(
     marked = [row for row in rows if row.endswith("<- the computer's break")]
     own = BREAKS["nine_ball"]
     assert len(marked) == 1 and f"{own.offset:5.2f} {own.speed:5.1f}" in marked[0]
+    for row in rows:  # the last column: how open the breaks left the rack, 0 to 1
+        spread = float(re.findall(r"%\s+(\d\.\d{3})", row)[-1])
+        assert 0.0 <= spread <= 1.0
 
 
 def test_a_break_too_soft_to_open_the_rack_keeps_nothing() -> None:
@@ -172,6 +175,8 @@ def test_a_break_too_soft_to_open_the_rack_keeps_nothing() -> None:
     tuned = [break_once("eight_ball", s, BREAKS["eight_ball"], "pro") for s in range(1000, 1010)]
     assert sum(t.kept for t in tuned) >= 6
     assert all(t.kept_with_pot <= t.kept for t in tuned)
+    # A soft break leaves the rack packed: few of its balls have a clear pot.
+    assert soft.open_sum < 0.3 < sum(t.open_sum for t in tuned) / len(tuned)
 
 
 def test_the_counts_say_how_often_a_player_kept_the_table_after_breaking(
