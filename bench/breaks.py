@@ -32,6 +32,8 @@ from server.ai.bot import BREAKS, BreakStroke, break_shot, break_spot, head_ball
 from server.ai.geometry import best_chance, open_share
 from server.engine import simulate
 from server.rules import Game
+from server.rules.eight_ball import EIGHT
+from server.rules.nine_ball import NINE
 
 OFFSETS = (0.0, 0.22, 0.35, 0.5)  # m beside the long string
 SPEEDS = (8.0, 9.0, 10.0, 11.0, 12.0)  # m/s
@@ -90,7 +92,7 @@ def spread(game: Game) -> float:
     """How open the break left the rack (`open_share` of the object balls on the table,
     the game ball left out): a packed rack is what a runout after the break is lost on
     (docs/ai.md, "Spread round")."""
-    game_ball = 8 if game.rules.kind == "eight_ball" else 9
+    game_ball = EIGHT if game.rules.kind == "eight_ball" else NINE
     balls = [b for b in game.position().object_balls if b != game_ball]
     return open_share(game.table, game.balls, balls)
 
