@@ -5,6 +5,7 @@ ladder of levels, plan times and per-game counts.
                        [--kind eight_ball] [--seed 0] [--jobs 1]
                        [--rooms 2] [--workers 1] [--seconds 10] [--configs 1200] [--fit]
                        [--save outcomes.json] [--paired earlier.json]
+                       [--noise aim,speed,tip]
 
 `calibrate`: the pot chance the search plans with against the engine's measured rates
 under the top level's noise (what `geometry.FASTFIZ` was fitted to); `--fit` refits it.
@@ -21,6 +22,12 @@ them (`Turn.chance`, the share of its noisy trials that dropped), and the runout
 each rack not cleared ended (a missed pot planned at 90 % or more, a harder one, a safety,
 a foul, the 8 lost).
 
+`--noise` plays the runouts' strokes with only some parts of the execution error (the
+plans still assume the level's own): `none` for exact strokes, `aim` or `aim,speed` to
+see what each part costs, `aim,speed,tip,squirt` with the tip's error turning the cue
+ball's line as well (how `Bot.execute` played until the "Squirt round"). It says what the
+racks are lost to.
+
 `--save` writes each rack's and game's outcome by seed; `--paired` compares this run with
 such a file seed by seed. A seed gives the same rack and the same noise draws, so two
 versions of the search differ only where their play differs: the sign test on the seeds
@@ -32,6 +39,7 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import functools
 import itertools
 import json
 import math
@@ -47,7 +55,7 @@ import numpy as np
 from numba import njit
 
 from server.ai import LEVELS, Bot, Turn, play_turn
-from server.ai.aiming import clamp_shot
+from server.ai.aiming import clamp_shot, perturb
 from server.ai.bot import NormalSource
 from server.ai.geometry import (
     ChanceModel,
@@ -58,6 +66,7 @@ from server.ai.geometry import (
     pot_options,
     speed_for,
 )
+from server.ai.levels import BY_NAME, Level
 from server.ai.play import warm_up
 from server.codec import to_data
 from server.engine import CUE, TICK_HZ, Shot
@@ -142,6 +151,45 @@ class Greedy:
 
 
 Player = Bot | Greedy
+
+
+# --- the execution error, in parts --------------------------------------------------------
+NOISE_PARTS = ("aim", "speed", "tip", "squirt")
+FULL_NOISE = ("aim", "speed", "tip")
+
+
+@dataclass(frozen=True)
+class Arm:
+    """A level's execution error with only some of its parts (`--noise`): "aim" (the
+    line), "speed", "tip" (the spin the tip's error gives) and "squirt" (with "tip": the
+    tip's error also turns the cue ball's line by its squirt, as `perturb` played it
+    before the "Squirt round"). Four normals are drawn whatever the parts, so a seed's
+    shots get the same draws in every variant and runs compare seed by seed."""
+
+    level: Level
+    parts: tuple[str, ...] = FULL_NOISE
+
+    def execute(self, shot: Shot, rng: NormalSource) -> Shot:
+        draws = np.array([float(rng.normal(0.0, 1.0)) for _ in range(4)])
+        parts = self.parts
+        keep = np.array(["aim" in parts, "speed" in parts, "tip" in parts, "tip" in parts])
+        return perturb(shot, draws * keep, self.level, squirt="squirt" in parts)
+
+
+# The runouts' break is played with the error as `Bot.execute` had it before the "Squirt
+# round" (the tip's error squirting the cue ball too): a break is chaotic, and so a seed
+# keeps the layout every earlier round measured it on, and runs of any version compare
+# seed by seed.
+BREAK_NOISE = (*FULL_NOISE, "squirt")
+
+
+def noise_parts(text: str) -> tuple[str, ...]:
+    """`--noise`'s comma list: parts of `NOISE_PARTS`, or "none" for exact strokes."""
+    parts = tuple(p for p in text.split(",") if p and p != "none")
+    unknown = [p for p in parts if p not in NOISE_PARTS]
+    if unknown:
+        raise argparse.ArgumentTypeError(f"unknown noise part {unknown[0]!r}: {NOISE_PARTS}")
+    return parts
 
 
 # --- statistics -----------------------------------------------------------------------
@@ -303,15 +351,18 @@ def _game_job(args: tuple[str, tuple[str, str], int, int]) -> tuple[int | None, 
     return play_game(*args)
 
 
-def runout(seed: int) -> tuple[bool, Counts]:
+def runout(seed: int, noise: tuple[str, ...] = FULL_NOISE) -> tuple[bool, Counts]:
     """After a break (the top level's, with noise), the top level gets ball in hand on an
-    open 8-ball table: does it clear the table and win without leaving it?"""
+    open 8-ball table: does it clear the table and win without leaving it? Its strokes are
+    played with the parts `noise` of its execution error; the break with `BREAK_NOISE`,
+    so that a seed's layout is the same whatever the parts and the version."""
     top = LEVELS[-1]
+    arm = Arm(BY_NAME[top], noise)
     game = Game.new("eight_ball", ["breaker", top], breaker=0, seed=seed)
     breaker = Bot(top, seed + 777)
     rng = np.random.default_rng(seed + 999)
     turn = breaker.plan(game, 0)
-    play_turn(game, 0, turn, breaker, rng)
+    play_turn(game, 0, turn, Arm(BY_NAME[top], BREAK_NOISE), rng)
     # The position the benchmark asks for: seat 1, ball in hand anywhere, open table.
     game.decision = game.pending = game.after_decision_bih = None
     game.over, game.winner, game.reason = False, None, None
@@ -328,7 +379,7 @@ def runout(seed: int) -> tuple[bool, Counts]:
         plan = bot.plan(game, 1)
         counts.times.setdefault(top, []).append(time.perf_counter() - t0)
         counts.cpu.setdefault(top, []).append(time.process_time() - c0)
-        outcome, _ = play_turn(game, 1, plan, bot, rng)
+        outcome, _ = play_turn(game, 1, plan, arm, rng)
         assert outcome is not None
         counts.tally(top, plan, outcome)
         if game.over and game.winner == 1:
@@ -426,7 +477,8 @@ CALIBRATE_TRIALS = 30  # noisy strokes per configuration
 
 def pot_rates(configs: int, seed: int) -> np.ndarray:
     """Random one-ball pots (cue ball, object ball and pocket anywhere the geometry allows),
-    each played `CALIBRATE_TRIALS` times with the top level's noise (centre ball, 1.8 or 2.4
+    each played `CALIBRATE_TRIALS` times with the top level's noise as its search plans it
+    (the tip's error squirting the line too, `Search.noisy`; centre ball, 1.8 or 2.4
     times the speed that just reaches, aimed for the throw as the computer aims): rows of
     (d1, d2, cut, side pocket, cos of the approach to the mouth, measured rate)."""
     from server.ai.aiming import aim_for_throw, aimed, perturb
@@ -454,7 +506,8 @@ def pot_rates(configs: int, seed: int) -> np.ndarray:
         shot, _ = aim_for_throw(table, balls, shot, 1, o.pocket)
         made = 0
         for _ in range(CALIBRATE_TRIALS):
-            final = simulate(table, balls, perturb(shot, rng.standard_normal(4), level)).final
+            draws = rng.standard_normal(4)
+            final = simulate(table, balls, perturb(shot, draws, level, squirt=True)).final
             row = final.index(1)
             made += bool(
                 not final.on_table[row]
@@ -674,6 +727,15 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--fit", action="store_true", help="refit the chance model (calibrate)")
     parser.add_argument("--save", help="write each rack's and game's outcome by seed (JSON)")
     parser.add_argument("--paired", help="compare seed by seed with a file --save wrote")
+    parser.add_argument(
+        "--noise",
+        type=noise_parts,
+        default=FULL_NOISE,
+        help="the parts of the execution error the runouts' strokes are played with: a "
+        "comma list of aim, speed, tip (the spin's error), squirt (with tip: the tip's "
+        "error turns the line too, as before the Squirt round), or none (exact strokes); "
+        "the plans assume the level's error (default aim,speed,tip)",
+    )
     args = parser.parse_args(argv)
     parts = set(args.only.split(","))
     outcomes: Outcomes = {}
@@ -685,13 +747,17 @@ def main(argv: list[str] | None = None) -> int:
     if "runouts" in parts:
         t0 = time.perf_counter()
         seeds = [args.seed + i for i in range(args.runouts)]
-        results = _map(runout, seeds, args.jobs)
+        results = _map(functools.partial(runout, noise=args.noise), seeds, args.jobs)
         cleared = sum(ok for ok, _ in results)
         outcomes["runouts"] = {str(s): ok for s, (ok, _) in zip(seeds, results, strict=True)}
         total = Counts()
         for _, counts in results:
             total.add(counts)
-        print(f"runouts ({LEVELS[-1]}, ball in hand after a break, open 8-ball table):")
+        played = ",".join(args.noise) or "none"
+        print(
+            f"runouts ({LEVELS[-1]}, ball in hand after a break, open 8-ball table; "
+            f"strokes played with the error's parts: {played}):"
+        )
         print(f"  cleared and won {share(cleared, len(seeds))}; {time.perf_counter() - t0:.0f} s")
         report_counts(total, [LEVELS[-1]])
         report_chances(total, LEVELS[-1])

@@ -47,15 +47,27 @@ def aimed(angle: float, speed: float, side: float, height: float) -> Shot:
     return clamp_shot(angle - shot.squirt(), shot.speed, *shot.tip)
 
 
-def perturb(shot: Shot, noise: np.ndarray, level: Level) -> Shot:
-    """`shot` with standard-normal errors `noise` (aim, speed, side, height) at `level`."""
+def perturb(shot: Shot, noise: np.ndarray, level: Level, squirt: bool = False) -> Shot:
+    """`shot` with standard-normal errors `noise` (aim, speed, side, height) at `level`.
+
+    As the level's arm plays it (`Bot.execute`), the aim sigma is the whole error of the
+    cue ball's line: the tip's error changes the spin, and the cue is turned against the
+    squirt of the tip it struck. That is the tournaments' noise as FastFiz plays it (its
+    cue strike sends the ball along the cue whatever the tip: sigma aim 0.125 degrees is
+    a 0.125-degree line); with the engine's squirt on top, the pro's 0.5 mm tip error
+    turned the line by about 0.075 degrees more. `squirt=True` lets the tip's error turn
+    the line too: the search plans so, a little more error than its arm has, which
+    cleared more runouts than planning with the arm's own (docs/ai.md, "Squirt round")."""
     side, height = shot.tip
-    return clamp_shot(
+    played = clamp_shot(
         shot.angle + float(noise[0]) * level.aim,
         shot.speed + float(noise[1]) * level.speed,
         side + float(noise[2]) * level.tip,
         height + float(noise[3]) * level.tip,
     )
+    if squirt:
+        return played
+    return clamp_shot(played.angle + shot.squirt() - played.squirt(), played.speed, *played.tip)
 
 
 def aim_for_throw(

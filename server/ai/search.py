@@ -266,6 +266,13 @@ class Search:
         return GIVE_BASE - GIVE_SCALE * q_opp
 
     # --- evaluation -------------------------------------------------------------------
+    def noisy(self, shot: Shot, row: np.ndarray) -> Shot:
+        """`shot` under the draws `row` as the search plans it: the level's error with the
+        tip's error turning the line by its squirt as well (`perturb`), a little more
+        than the arm's own; planned so, the pro cleared more runouts (docs/ai.md,
+        "Squirt round")."""
+        return perturb(shot, row, self.level, squirt=True)
+
     def pos_for(self, cand: Candidate) -> Position:
         return replace(self.pos, called_pocket=cand.call) if cand.call is not None else self.pos
 
@@ -293,7 +300,7 @@ class Search:
         pos = self.pos_for(cand)
         total, made = 0.0, 0
         for row in self.noise:
-            value, ok, _, _ = self.outcome(pos, balls, perturb(cand.shot, row, self.level))
+            value, ok, _, _ = self.outcome(pos, balls, self.noisy(cand.shot, row))
             total += value
             made += ok
         n = max(len(self.noise), 1)
@@ -372,7 +379,7 @@ class Search:
             if self.limit - self.sims < LOOK_SIMS or (k >= LOOK_LEAVES and cand.leaves):
                 break
             searched = True
-            shot = cand.shot if row is None else perturb(cand.shot, row, self.level)
+            shot = cand.shot if row is None else self.noisy(cand.shot, row)
             value, made, ruling, final = self.outcome(pos, balls, shot)
             if not made or ruling.winner is not None:
                 continue

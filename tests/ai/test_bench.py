@@ -3,6 +3,7 @@ report counts the seeds only one version won) and its refit of the pot-chance mo
 
 from __future__ import annotations
 
+import argparse
 import json
 import re
 from dataclasses import replace
@@ -12,12 +13,14 @@ import numpy as np
 import pytest
 
 from bench.ai import (
+    Arm,
     Counts,
     _map,
     end_of_rack,
     log_loss,
     main,
     model_rates,
+    noise_parts,
     rank_correlation,
     refit,
     report_chances,
@@ -27,9 +30,10 @@ from bench.ai import (
 from bench.breaks import break_once, strokes
 from bench.breaks import main as breaks_main
 from server.ai import Bot, Turn, play_turn
+from server.ai.aiming import aimed
 from server.ai.bot import BREAKS, BreakStroke
 from server.ai.geometry import ChanceModel
-from server.engine import BALL_RADIUS
+from server.engine import BALL_RADIUS, Shot
 from server.rules import Foul, Game, Outcome
 
 
@@ -195,3 +199,32 @@ def test_the_counts_say_how_often_a_player_kept_the_table_after_breaking(
     assert (counts.breaks["pro"], counts.breaks_kept["pro"]) == (2, 1)
     report_counts(counts, ["pro"])
     assert "kept the table after 1/2 breaks" in capsys.readouterr().out
+
+
+def test_the_runouts_noise_parts_play_the_same_draws_with_parts_left_out() -> None:
+    """`--noise`: every variant draws the same four normals a stroke, so a seed's racks
+    differ only by the parts left out; the full error is the bot's own."""
+    bot = Bot("pro")
+    shot = aimed(0.3, 2.0, 0.2, 0.1)
+
+    def play(parts: tuple[str, ...]) -> Shot:
+        return Arm(bot.level, parts).execute(shot, np.random.default_rng(5))
+
+    full = play(("aim", "speed", "tip"))
+    assert full == bot.execute(shot, np.random.default_rng(5))
+    assert play(()) == shot
+    aim = play(("aim",))
+    assert (aim.speed, aim.tip) == (shot.speed, shot.tip)
+    # The tip's error changes the spin, not the line: the line is the aim's alone.
+    assert full.tip != shot.tip
+    assert full.direction() == pytest.approx(aim.direction(), abs=1e-12)
+    # With "squirt" the tip's error turns the line too, by the squirt of the tip struck.
+    squirted = play(("aim", "speed", "tip", "squirt"))
+    assert squirted.tip == full.tip
+    turned = squirted.direction() - aim.direction()
+    assert turned == pytest.approx(full.squirt() - shot.squirt(), abs=1e-12)
+    assert abs(turned) > 1e-5
+    assert noise_parts("aim,speed,tip,squirt") == ("aim", "speed", "tip", "squirt")
+    assert noise_parts("none") == ()
+    with pytest.raises(argparse.ArgumentTypeError, match="unknown noise part 'wind'"):
+        noise_parts("aim,wind")

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from server.ai import LEVELS, Bot, Turn, play_turn
-from server.ai.aiming import clamp_shot, departure, perturb
+from server.ai.aiming import aimed, clamp_shot, departure, perturb
 from server.ai.geometry import best_chance, pot_options
 from server.ai.levels import BY_NAME
 from server.ai.search import (
@@ -319,6 +319,28 @@ def test_execute_keeps_shots_valid_and_weak_levels_miss_more() -> None:
     spreads = [spread(level) for level in Bot.LEVELS]
     assert spreads == sorted(spreads, reverse=True)
     assert math.degrees(spreads[-1]) == pytest.approx(0.125, rel=0.2)
+
+
+def test_the_aim_error_is_the_whole_error_of_the_cue_balls_line() -> None:
+    """The tip's error changes the spin, not the line (the tournaments' noise as FastFiz
+    plays it: no squirt): with side spin intended, the cue ball's line strays by the
+    level's aim sigma and the tip by its tip sigma."""
+    pro = Bot("pro")
+    shot = aimed(0.4, 2.0, 0.3, -0.1)
+    tip_only = perturb(shot, np.array([0.0, 0.0, 2.0, -1.5]), pro.level)
+    assert tip_only.tip != shot.tip and tip_only.squirt() != shot.squirt()
+    assert tip_only.direction() == pytest.approx(shot.direction(), abs=1e-12)
+    # The search plans with a little more: the tip's error squirting the line as well.
+    planned = perturb(shot, np.array([0.0, 0.0, 2.0, -1.5]), pro.level, squirt=True)
+    assert planned.tip == tip_only.tip
+    turned = planned.direction() - shot.direction()
+    assert turned == pytest.approx(planned.squirt() - shot.squirt(), abs=1e-12)
+    rng = np.random.default_rng(3)
+    played = [pro.execute(shot, rng) for _ in range(2000)]
+    line = np.std([p.direction() - shot.direction() for p in played])
+    side = np.std([p.tip[0] for p in played])
+    assert math.degrees(line) == pytest.approx(0.125, rel=0.08)
+    assert side == pytest.approx(pro.level.tip, rel=0.08)
 
 
 @pytest.mark.parametrize("kind", ["eight_ball", "nine_ball"])

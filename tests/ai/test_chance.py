@@ -45,14 +45,14 @@ def _pot_at(object_from_pocket: float, cue_behind: float, cut_deg: float) -> Bal
 
 
 def _engine_rate(balls: BallSet, option: PotOption, strokes: np.ndarray) -> float:
-    """The share of `strokes` (standard-normal errors at the pro's noise) that drop the
-    object ball in `option`'s pocket, aimed for the throw as the search aims (the cue
-    ball's fate is not the chance's business)."""
+    """The share of `strokes` (standard-normal errors at the pro's noise as its search
+    plans it, `Search.noisy`) that drop the object ball in `option`'s pocket, aimed for
+    the throw as the search aims (the cue ball's fate is not the chance's business)."""
     shot = aimed(option.angle, speed_for(option) * 1.8, 0.0, 0.0)
     shot, _ = aim_for_throw(TABLE, balls, shot, 1, option.pocket)
     made = 0
     for row in strokes:
-        final = simulate(TABLE, balls, perturb(shot, row, PRO)).final
+        final = simulate(TABLE, balls, perturb(shot, row, PRO, squirt=True)).final
         k = final.index(1)
         made += not final.on_table[k] and int(final.pockets[k]) == option.pocket
     return made / len(strokes)
