@@ -25,8 +25,8 @@ a foul, the 8 lost).
 `--noise` plays the runouts' strokes with only some parts of the execution error (the
 plans still assume the level's own): `none` for exact strokes, `aim` or `aim,speed` to
 see what each part costs, `aim,speed,tip,squirt` with the tip's error turning the cue
-ball's line as well (how `Bot.execute` played until the "Squirt round"). It says what the
-racks are lost to.
+ball's line as well (an arm that does not allow for the squirt of the tip it strikes;
+docs/ai.md, "Squirt round"). It says what the racks are lost to.
 
 `--save` writes each rack's and game's outcome by seed; `--paired` compares this run with
 such a file seed by seed. A seed gives the same rack and the same noise draws, so two
@@ -162,8 +162,8 @@ FULL_NOISE = ("aim", "speed", "tip")
 class Arm:
     """A level's execution error with only some of its parts (`--noise`): "aim" (the
     line), "speed", "tip" (the spin the tip's error gives) and "squirt" (with "tip": the
-    tip's error also turns the cue ball's line by its squirt, as `perturb` played it
-    before the "Squirt round"). Four normals are drawn whatever the parts, so a seed's
+    tip's error also turns the cue ball's line by its squirt, as for an arm that does not
+    allow for it, `perturb(squirt=True)`). Four normals are drawn whatever the parts, so a seed's
     shots get the same draws in every variant and runs compare seed by seed."""
 
     level: Level
@@ -176,10 +176,9 @@ class Arm:
         return perturb(shot, draws * keep, self.level, squirt="squirt" in parts)
 
 
-# The runouts' break is played with the error as `Bot.execute` had it before the "Squirt
-# round" (the tip's error squirting the cue ball too): a break is chaotic, and so a seed
-# keeps the layout every earlier round measured it on, and runs of any version compare
-# seed by seed.
+# The runouts' break is played with the tip's error squirting the cue ball too, the arm
+# the layouts were first measured with: a break is chaotic, and so a seed keeps the layout
+# that earlier runs (docs/ai.md) measured, and runs of any version compare seed by seed.
 BREAK_NOISE = (*FULL_NOISE, "squirt")
 
 
@@ -733,7 +732,7 @@ def main(argv: list[str] | None = None) -> int:
         default=FULL_NOISE,
         help="the parts of the execution error the runouts' strokes are played with: a "
         "comma list of aim, speed, tip (the spin's error), squirt (with tip: the tip's "
-        "error turns the line too, as before the Squirt round), or none (exact strokes); "
+        "error turns the line too, by its squirt), or none (exact strokes); "
         "the plans assume the level's error (default aim,speed,tip)",
     )
     args = parser.parse_args(argv)
