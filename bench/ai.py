@@ -154,7 +154,7 @@ Player = Bot | Greedy
 
 
 # --- the execution error, in parts --------------------------------------------------------
-NOISE_PARTS = ("aim", "speed", "tip", "squirt")
+NOISE_PARTS = ("aim", "speed", "tip", "squirt", "ball-speed")
 FULL_NOISE = ("aim", "speed", "tip")
 
 
@@ -163,8 +163,10 @@ class Arm:
     """A level's execution error with only some of its parts (`--noise`): "aim" (the
     line), "speed", "tip" (the spin the tip's error gives) and "squirt" (with "tip": the
     tip's error also turns the cue ball's line by its squirt, as for an arm that does not
-    allow for it, `perturb(squirt=True)`). Four normals are drawn whatever the parts, so a seed's
-    shots get the same draws in every variant and runs compare seed by seed."""
+    allow for it, `perturb(squirt=True)`) and "ball-speed" (with "speed": the speed's
+    sigma on the ball's speed, not the cue's, `perturb(cue_speed=False)`). Four normals
+    are drawn whatever the parts, so a seed's shots get the same draws in every variant
+    and runs compare seed by seed."""
 
     level: Level
     parts: tuple[str, ...] = FULL_NOISE
@@ -173,13 +175,20 @@ class Arm:
         draws = np.array([float(rng.normal(0.0, 1.0)) for _ in range(4)])
         parts = self.parts
         keep = np.array(["aim" in parts, "speed" in parts, "tip" in parts, "tip" in parts])
-        return perturb(shot, draws * keep, self.level, squirt="squirt" in parts)
+        return perturb(
+            shot,
+            draws * keep,
+            self.level,
+            squirt="squirt" in parts,
+            cue_speed="ball-speed" not in parts,
+        )
 
 
-# The runouts' break is played with the tip's error squirting the cue ball too, the arm
-# the layouts were first measured with: a break is chaotic, and so a seed keeps the layout
-# that earlier runs (docs/ai.md) measured, and runs of any version compare seed by seed.
-BREAK_NOISE = (*FULL_NOISE, "squirt")
+# The runouts' break is played with the arm the layouts were first measured with (the
+# tip's error squirting the cue ball, the speed's sigma on the ball's speed): a break is
+# chaotic, and so a seed keeps the layout that earlier runs (docs/ai.md) measured, and
+# runs of any version compare seed by seed.
+BREAK_NOISE = (*FULL_NOISE, "squirt", "ball-speed")
 
 
 def noise_parts(text: str) -> tuple[str, ...]:
@@ -731,8 +740,10 @@ def main(argv: list[str] | None = None) -> int:
         type=noise_parts,
         default=FULL_NOISE,
         help="the parts of the execution error the runouts' strokes are played with: a "
-        "comma list of aim, speed, tip (the spin's error), squirt (with tip: the tip's "
-        "error turns the line too, by its squirt), or none (exact strokes); "
+        "comma list of aim, speed (the cue's, as FastFiz's), tip (the spin's error), "
+        "squirt (with tip: the tip's error turns the line too, by its squirt), "
+        "ball-speed (with speed: its sigma on the ball's speed), or none (exact "
+        "strokes); "
         "the plans assume the level's error (default aim,speed,tip)",
     )
     args = parser.parse_args(argv)

@@ -28,6 +28,9 @@ CAROM_NUDGE = math.radians(0.02)
 CAROM_STEPS = 4
 CAROM_MAX = math.radians(0.5)
 CAROM_DONE = math.radians(0.2)
+# FastFiz's cue strike (Leckie and Greenspan's equation 1): its ball's mass over its cue's
+# (163.01 g, 600 g).
+FASTFIZ_MASS_RATIO = 163.01 / 600.0
 
 
 def clamp_shot(angle: float, speed: float, side: float, height: float) -> Shot:
@@ -47,7 +50,21 @@ def aimed(angle: float, speed: float, side: float, height: float) -> Shot:
     return clamp_shot(angle - shot.squirt(), shot.speed, *shot.tip)
 
 
-def perturb(shot: Shot, noise: np.ndarray, level: Level, squirt: bool = False) -> Shot:
+def strike_gain(side: float, height: float) -> float:
+    """The cue ball's speed per unit of the cue's speed in FastFiz's strike, cue level:
+    2 / (1 + m/M + 5/2 (a^2 + b^2) / R^2), 1.57 at centre ball and 1.27 with the tip
+    0.35 R off it. FastFiz's speed error (sigma V) is the cue's: the ball's strays by
+    sigma V times this."""
+    return 2.0 / (1.0 + FASTFIZ_MASS_RATIO + 2.5 * (side * side + height * height))
+
+
+def perturb(
+    shot: Shot,
+    noise: np.ndarray,
+    level: Level,
+    squirt: bool = False,
+    cue_speed: bool = True,
+) -> Shot:
     """`shot` with standard-normal errors `noise` (aim, speed, side, height) at `level`.
 
     As the level's arm plays it (`Bot.execute`), the aim sigma is the whole error of the
@@ -57,11 +74,17 @@ def perturb(shot: Shot, noise: np.ndarray, level: Level, squirt: bool = False) -
     a 0.125-degree line); with the engine's squirt on top, the pro's 0.5 mm tip error
     turned the line by about 0.075 degrees more. `squirt=True` lets the tip's error turn
     the line too: the search plans so, a little more error than its arm has, which
-    cleared more runouts than planning with the arm's own (docs/ai.md, "Squirt round")."""
+    cleared more runouts than planning with the arm's own (docs/ai.md, "Squirt round").
+
+    The speed sigma is the cue's, as FastFiz's is (`strike_gain`): the ball's speed
+    strays by about 1.3-1.6 times it. `cue_speed=False` puts the sigma on the ball's
+    speed itself (the benchmark's break, so that its layouts stay those measured
+    before; docs/ai.md, "Cue-speed round")."""
     side, height = shot.tip
+    gain = strike_gain(side, height) if cue_speed else 1.0
     played = clamp_shot(
         shot.angle + float(noise[0]) * level.aim,
-        shot.speed + float(noise[1]) * level.speed,
+        shot.speed + float(noise[1]) * level.speed * gain,
         side + float(noise[2]) * level.tip,
         height + float(noise[3]) * level.tip,
     )

@@ -22,7 +22,9 @@ class Level:
 
     aim_deg / speed / tip_mm: the standard deviations of the execution error (degrees, m/s,
     millimetres of tip offset on each axis); aim_deg is the whole error of the cue ball's
-    line, the tip's error changes the spin (`aiming.perturb`). pairs: (ball, pocket) pairs
+    line, the tip's error changes the spin, and speed is the cue's, as in FastFiz (the
+    ball's speed strays by `aiming.strike_gain` times it, 1.3-1.6; `aiming.perturb`).
+    pairs: (ball, pocket) pairs
     tried per turn; speeds / tips: stroke variants of each; refine: variants sampled under
     noise; samples: noisy simulations per refined variant; safeties: whether it plays safe
     on purpose (a level without them still finds a legal hit when it has no pot);

@@ -30,7 +30,7 @@ from bench.ai import (
 from bench.breaks import break_once, strokes
 from bench.breaks import main as breaks_main
 from server.ai import Bot, Turn, play_turn
-from server.ai.aiming import aimed
+from server.ai.aiming import aimed, strike_gain
 from server.ai.bot import BREAKS, BreakStroke
 from server.ai.geometry import ChanceModel
 from server.engine import BALL_RADIUS, Shot
@@ -224,6 +224,13 @@ def test_the_runouts_noise_parts_play_the_same_draws_with_parts_left_out() -> No
     turned = squirted.direction() - aim.direction()
     assert turned == pytest.approx(full.squirt() - shot.squirt(), abs=1e-12)
     assert abs(turned) > 1e-5
+    # The speed's sigma is the cue's (FastFiz's); with "ball-speed" it is the ball's own.
+    rng = np.random.default_rng(5)
+    draw = [float(rng.normal(0.0, 1.0)) for _ in range(4)][1]
+    assert full.speed - shot.speed == pytest.approx(draw * 0.075 * strike_gain(0.2, 0.1))
+    ball = play(("aim", "speed", "tip", "ball-speed"))
+    assert ball.speed - shot.speed == pytest.approx(draw * 0.075)
+    assert (ball.angle, ball.tip) == (full.angle, full.tip)
     assert noise_parts("aim,speed,tip,squirt") == ("aim", "speed", "tip", "squirt")
     assert noise_parts("none") == ()
     with pytest.raises(argparse.ArgumentTypeError, match="unknown noise part 'wind'"):

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from server.ai import LEVELS, Bot, Turn, play_turn
-from server.ai.aiming import aimed, clamp_shot, departure, perturb
+from server.ai.aiming import aimed, clamp_shot, departure, perturb, strike_gain
 from server.ai.geometry import best_chance, pot_options
 from server.ai.levels import BY_NAME
 from server.ai.search import (
@@ -341,6 +341,33 @@ def test_the_aim_error_is_the_whole_error_of_the_cue_balls_line() -> None:
     side = np.std([p.tip[0] for p in played])
     assert math.degrees(line) == pytest.approx(0.125, rel=0.08)
     assert side == pytest.approx(pro.level.tip, rel=0.08)
+
+
+def test_the_speed_error_is_the_cues_carried_through_fastfizs_strike() -> None:
+    """FastFiz's sigma V (0.075 m/s for the pro) is the cue's speed: its strike (Leckie and
+    Greenspan's equation 1, a 163.01 g ball and a 600 g cue, cue level) sends the ball
+    off at 2 V / (1 + m/M + 5/2 (a^2 + b^2) / R^2), so the ball's speed strays by about
+    1.57 times it at centre ball and less with the tip off centre. The arm and the
+    search's model both play it so; `cue_speed=False` is the ball's speed itself."""
+    m_over_cue = 0.16301 / 0.600
+    assert strike_gain(0.0, 0.0) == pytest.approx(2 / (1 + m_over_cue), rel=1e-12)
+    assert strike_gain(0.0, 0.0) == pytest.approx(1.5727, abs=1e-4)
+    assert strike_gain(0.3, 0.15) == pytest.approx(2 / (1 + m_over_cue + 2.5 * 0.1125))
+    pro = Bot("pro")
+    draws = np.array([0.0, 1.0, 0.0, 0.0])
+    for tip in ((0.0, 0.0), (0.0, -0.35), (0.3, 0.15)):
+        shot = aimed(0.4, 2.0, *tip)
+        gain = strike_gain(*tip)
+        assert perturb(shot, draws, pro.level).speed == pytest.approx(2.0 + 0.075 * gain)
+        assert perturb(shot, draws, pro.level, squirt=True).speed == pytest.approx(
+            2.0 + 0.075 * gain
+        )
+        ball = perturb(shot, draws, pro.level, cue_speed=False)
+        assert ball.speed == pytest.approx(2.075)
+    shot = aimed(0.4, 2.0, 0.0, 0.0)
+    rng = np.random.default_rng(4)
+    speeds = [pro.execute(shot, rng).speed for _ in range(2000)]
+    assert np.std(speeds) == pytest.approx(0.075 * 1.5727, rel=0.08)
 
 
 @pytest.mark.parametrize("kind", ["eight_ball", "nine_ball"])
