@@ -24,10 +24,10 @@ class Level:
     millimetres of tip offset on each axis); aim_deg is the whole error of the cue ball's
     line, the tip's error changes the spin, and speed is the cue's, as in FastFiz (the
     ball's speed strays by `aiming.strike_gain` times it, 1.3-1.6; `aiming.perturb`).
-    pairs: (ball, pocket) pairs
-    tried per turn; speeds / tips: stroke variants of each; refine: variants sampled under
-    noise; samples: noisy simulations per refined variant; safeties: whether it plays safe
-    on purpose (a level without them still finds a legal hit when it has no pot);
+    pairs: (ball, pocket) pairs tried per turn; speeds / tips: stroke variants of each;
+    refine: variants sampled under noise; samples: noisy simulations per refined variant;
+    safeties: whether it plays safe on purpose (a level without them still finds a legal
+    hit when it has no pot);
     placements: ball-in-hand spots searched in full; position: weight of the position left;
     confirm / confirm_samples: the best few variants sampled again on fresh draws; budget:
     simulations per turn at most (it bounds the plan time); lookahead: how many of the best
