@@ -26,7 +26,8 @@ a foul, the 8 lost).
 plans still assume the level's own): `none` for exact strokes, `aim` or `aim,speed` to
 see what each part costs, `aim,speed,tip,squirt` with the tip's error turning the cue
 ball's line as well (an arm that does not allow for the squirt of the tip it strikes;
-docs/ai.md, "Squirt round"). It says what the racks are lost to.
+docs/ai.md, "Squirt round"), `ball-speed` with the speed's sigma on the ball's speed, not
+the cue's (docs/ai.md, "Cue-speed round"). It says what the racks are lost to.
 
 `--save` writes each rack's and game's outcome by seed; `--paired` compares this run with
 such a file seed by seed. A seed gives the same rack and the same noise draws, so two

@@ -27,13 +27,13 @@ class Level:
     pairs: (ball, pocket) pairs tried per turn; speeds / tips: stroke variants of each;
     refine: variants sampled under noise; samples: noisy simulations per refined variant;
     safeties: whether it plays safe on purpose (a level without them still finds a legal
-    hit when it has no pot);
-    placements: ball-in-hand spots searched in full; position: weight of the position left;
-    confirm / confirm_samples: the best few variants sampled again on fresh draws; budget:
-    simulations per turn at most (it bounds the plan time); lookahead: how many of the best
-    pots get a simulated search of the next shot from the table they leave; calibrated: it
-    ranks unsimulated pots with the chance model fitted to the engine; late_strokes: that
-    search tries more strokes late in a rack (`search.LATE_BALLS`).
+    hit when it has no pot); placements: ball-in-hand spots searched in full; position:
+    weight of the position left; confirm / confirm_samples: the best few variants sampled
+    again on fresh draws; budget: simulations per turn at most (it bounds the plan time);
+    lookahead: how many of the best pots get a simulated search of the next shot from the
+    table they leave; calibrated: it ranks unsimulated pots with the chance model fitted
+    to the engine; late_strokes: that search tries more strokes late in a rack
+    (`search.LATE_BALLS`).
     """
 
     name: str
