@@ -70,7 +70,8 @@ from server.ai.geometry import (
 from server.ai.levels import BY_NAME, Level
 from server.ai.play import warm_up
 from server.codec import to_data
-from server.engine import CUE, TICK_HZ, Shot
+from server.engine import CUE, TICK_HZ, Shot, Table
+from server.engine.table import TABLE_SIZES
 from server.rooms.computer import plan_turn
 from server.rules import ANYWHERE, Game, Outcome
 from server.rules.placement import can_place
@@ -332,10 +333,11 @@ def make_player(name: str, seed: int) -> Player:
 
 
 def play_game(
-    kind: str, names: tuple[str, str], breaker: int, seed: int
+    kind: str, names: tuple[str, str], breaker: int, seed: int, table: str = "9ft"
 ) -> tuple[int | None, Counts]:
-    """One game; returns the winning seat (None when stopped) and the counts."""
-    game = Game.new(kind, list(names), breaker=breaker, seed=seed)
+    """One game on a `table` ("9ft", "8ft" or "7ft"); returns the winning seat (None when
+    stopped) and the counts."""
+    game = Game.new(kind, list(names), breaker=breaker, seed=seed, table=Table.pool(table))
     players = [make_player(names[0], seed * 2 + 1), make_player(names[1], seed * 2 + 2)]
     rng = np.random.default_rng(seed + 12345)
     counts = Counts(games=1)
@@ -356,20 +358,17 @@ def play_game(
     return (game.winner if game.over else None), counts
 
 
-def _game_job(args: tuple[str, tuple[str, str], int, int]) -> tuple[int | None, Counts]:
+def _game_job(args: tuple[str, tuple[str, str], int, int, str]) -> tuple[int | None, Counts]:
     return play_game(*args)
 
 
-def runout(seed: int, noise: tuple[str, ...] = FULL_NOISE) -> tuple[bool, Counts]:
-    """After a break (the top level's, with noise), the top level gets ball in hand on an
-    open 8-ball table: does it clear the table and win without leaving it? Its strokes are
-    played with the parts `noise` of its execution error; the break with `BREAK_NOISE`,
-    so that a seed's layout is the same whatever the parts and the version."""
+def runout_position(seed: int, rng: np.random.Generator, table: str = "9ft") -> Game:
+    """The runouts' start: the top level breaks rack `seed` on a `table` (with
+    `BREAK_NOISE`, so that a seed's layout is the same whatever the parts and the version),
+    then seat 1 has ball in hand anywhere on an open 8-ball table, the 8 on it."""
     top = LEVELS[-1]
-    arm = Arm(BY_NAME[top], noise)
-    game = Game.new("eight_ball", ["breaker", top], breaker=0, seed=seed)
+    game = Game.new("eight_ball", ["breaker", top], breaker=0, seed=seed, table=Table.pool(table))
     breaker = Bot(top, seed + 777)
-    rng = np.random.default_rng(seed + 999)
     turn = breaker.plan(game, 0)
     play_turn(game, 0, turn, Arm(BY_NAME[top], BREAK_NOISE), rng)
     # The position the benchmark asks for: seat 1, ball in hand anywhere, open table.
@@ -381,6 +380,19 @@ def runout(seed: int, noise: tuple[str, ...] = FULL_NOISE) -> tuple[bool, Counts
         game.balls = respot(game.table, game.balls, (8,))
     game.breaking, game.groups, game.turn = False, None, 1
     game.ball_in_hand, game.push_out_available = ANYWHERE, False
+    return game
+
+
+def runout(
+    seed: int, noise: tuple[str, ...] = FULL_NOISE, table: str = "9ft"
+) -> tuple[bool, Counts]:
+    """After a break (the top level's, with noise), the top level gets ball in hand on an
+    open 8-ball table (`runout_position`): does it clear the table and win without leaving
+    it? Its strokes are played with the parts `noise` of its execution error."""
+    top = LEVELS[-1]
+    arm = Arm(BY_NAME[top], noise)
+    rng = np.random.default_rng(seed + 999)
+    game = runout_position(seed, rng, table)
     bot = Bot(top, seed)
     counts = Counts(games=1)
     for _ in range(40):
@@ -697,19 +709,21 @@ def report_counts(counts: Counts, names: list[str]) -> None:
         )
 
 
-def match(kind: str, strong: str, weak: str, games: int, seed: int, jobs: int) -> dict[str, bool]:
-    """`games` games of `strong` against `weak`, breaks and seats alternating: whether
-    `strong` won each, by seed."""
+def match(
+    kind: str, strong: str, weak: str, games: int, seed: int, jobs: int, table: str = "9ft"
+) -> dict[str, bool]:
+    """`games` games of `strong` against `weak` on a `table`, breaks and seats alternating:
+    whether `strong` won each, by seed."""
     args = []
     for i in range(games):
         names = (strong, weak) if i % 2 == 0 else (weak, strong)
-        args.append((kind, names, (i // 2) % 2, seed + i))
+        args.append((kind, names, (i // 2) % 2, seed + i, table))
     t0 = time.perf_counter()
     results = _map(_game_job, args, jobs)
     stopped = 0
     total = Counts()
     won: dict[str, bool] = {}
-    for (_, names, _, game_seed), (winner, counts) in zip(args, results, strict=True):
+    for (_, names, _, game_seed, _), (winner, counts) in zip(args, results, strict=True):
         total.add(counts)
         won[str(game_seed)] = winner is not None and names[winner] == strong
         stopped += winner is None
@@ -747,6 +761,13 @@ def main(argv: list[str] | None = None) -> int:
         "strokes); "
         "the plans assume the level's error (default aim,speed,tip)",
     )
+    parser.add_argument(
+        "--table",
+        choices=sorted(TABLE_SIZES),
+        default="9ft",
+        help="the table every rack and game is played on (the rooms' is 9ft; the "
+        "tournaments' FastFiz table, 2.236 x 1.116 m, is nearest the 8ft)",
+    )
     args = parser.parse_args(argv)
     parts = set(args.only.split(","))
     outcomes: Outcomes = {}
@@ -754,11 +775,15 @@ def main(argv: list[str] | None = None) -> int:
     if args.paired:  # read first: a wrong path fails now, not after the games
         with open(args.paired) as earlier:
             before = json.load(earlier)
-    print(f"bench.ai: levels {', '.join(LEVELS)}; seed {args.seed}; jobs {args.jobs}")
+    print(
+        f"bench.ai: levels {', '.join(LEVELS)}; seed {args.seed}; jobs {args.jobs}; "
+        f"{args.table} table"
+    )
     if "runouts" in parts:
         t0 = time.perf_counter()
         seeds = [args.seed + i for i in range(args.runouts)]
-        results = _map(functools.partial(runout, noise=args.noise), seeds, args.jobs)
+        play = functools.partial(runout, noise=args.noise, table=args.table)
+        results = _map(play, seeds, args.jobs)
         cleared = sum(ok for ok, _ in results)
         outcomes["runouts"] = {str(s): ok for s, (ok, _) in zip(seeds, results, strict=True)}
         total = Counts()
@@ -776,7 +801,9 @@ def main(argv: list[str] | None = None) -> int:
         print("  racks not cleared: " + (", ".join(f"{n} {why}" for why, n in ends) or "none"))
     if "greedy" in parts:
         print("against the greedy baseline (8-ball, alternating breaks):")
-        won = match("eight_ball", LEVELS[-1], "greedy", args.games, args.seed, args.jobs)
+        won = match(
+            "eight_ball", LEVELS[-1], "greedy", args.games, args.seed, args.jobs, args.table
+        )
         outcomes["greedy"] = won
     if "calibrate" in parts:
         calibrate(args.configs, args.seed, args.fit)
@@ -785,7 +812,7 @@ def main(argv: list[str] | None = None) -> int:
     if "ladder" in parts:
         print(f"the ladder ({args.kind}, each level against the one below):")
         for weak, strong in zip(LEVELS, LEVELS[1:], strict=False):
-            won = match(args.kind, strong, weak, args.games, args.seed, args.jobs)
+            won = match(args.kind, strong, weak, args.games, args.seed, args.jobs, args.table)
             outcomes[f"{args.kind} {strong} vs {weak}"] = won
     if args.save:
         with open(args.save, "w") as out:

@@ -25,6 +25,7 @@ from bench.ai import (
     refit,
     report_chances,
     report_counts,
+    runout_position,
     sign_test,
 )
 from bench.breaks import break_once, strokes
@@ -34,7 +35,7 @@ from server.ai.aiming import aimed, strike_gain
 from server.ai.bot import BREAKS, BreakStroke
 from server.ai.geometry import ChanceModel
 from server.engine import BALL_RADIUS, Shot
-from server.rules import Foul, Game, Outcome
+from server.rules import ANYWHERE, Foul, Game, Outcome
 
 
 def test_the_sign_test_is_the_two_sided_binomial_tail() -> None:
@@ -235,3 +236,19 @@ def test_the_runouts_noise_parts_play_the_same_draws_with_parts_left_out() -> No
     assert noise_parts("none") == ()
     with pytest.raises(argparse.ArgumentTypeError, match="unknown noise part 'wind'"):
         noise_parts("aim,wind")
+
+
+def test_the_runouts_start_on_the_table_asked_for_with_ball_in_hand_on_an_open_table() -> None:
+    """`--table`: the rack is broken and run on that table (the tournaments' FastFiz table,
+    2.236 x 1.116 m, is nearest the 8ft), every ball inside its outline (a ball may rest in
+    a pocket's jaws, past the bed)."""
+    for size, length, width in (("8ft", 2.34, 1.17), ("9ft", 2.54, 1.27)):
+        game = runout_position(3, np.random.default_rng(3 + 999), size)
+        table = game.table
+        assert (table.length, table.width) == (length, width)
+        assert (game.turn, game.ball_in_hand, game.groups, game.over) == (1, ANYWHERE, None, False)
+        on_table = game.balls.on_table_ids()
+        assert 8 in on_table and len(on_table) >= 10
+        for ball in on_table:
+            x, y = game.balls.positions[game.balls.index(ball)]
+            assert 0.0 < x < length and 0.0 < y < width, (size, ball, x, y)
