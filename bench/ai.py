@@ -5,7 +5,7 @@ ladder of levels, plan times and per-game counts.
                        [--kind eight_ball] [--seed 0] [--jobs 1]
                        [--rooms 2] [--workers 1] [--seconds 10] [--configs 1200] [--fit]
                        [--save outcomes.json] [--paired earlier.json]
-                       [--noise aim,speed,tip]
+                       [--noise aim,speed,tip] [--table 9ft]
 
 `calibrate`: the pot chance the search plans with against the engine's measured rates
 under the top level's noise (what `geometry.FASTFIZ` was fitted to); `--fit` refits it.
@@ -28,6 +28,9 @@ see what each part costs, `aim,speed,tip,squirt` with the tip's error turning th
 ball's line as well (an arm that does not allow for the squirt of the tip it strikes;
 docs/ai.md, "Squirt round"), `ball-speed` with the speed's sigma on the ball's speed, not
 the cue's (docs/ai.md, "Cue-speed round"). It says what the racks are lost to.
+
+`--table` plays every rack and game on an 8ft or 7ft table instead of the rooms' 9ft: the
+tournaments' FastFiz table (2.236 x 1.116 m, jawless pockets) is nearest the 8ft.
 
 `--save` writes each rack's and game's outcome by seed; `--paired` compares this run with
 such a file seed by seed. A seed gives the same rack and the same noise draws, so two
