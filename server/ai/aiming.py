@@ -7,11 +7,11 @@ does not see.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from server.engine import CUE, MAX_SPEED, MAX_TIP, BallSet, Event, Shot, Table, simulate
+from server.engine import CUE, MAX_SPEED, MAX_TIP, BallSet, Event, Shot, Table, settle, simulate
 
 from .geometry import pockets_of
 from .levels import Level
@@ -28,6 +28,12 @@ CAROM_NUDGE = math.radians(0.02)
 CAROM_STEPS = 4
 CAROM_MAX = math.radians(0.5)
 CAROM_DONE = math.radians(0.2)
+# The pocket's window (`pocket_window`): the outward steps that look for an edge, the
+# furthest an edge is looked for, and the halvings of the last step (the edge to about
+# 0.03 degrees of the object ball's direction).
+WINDOW_STEP = math.radians(0.5)
+WINDOW_REACH = math.radians(8.0)
+WINDOW_HALVINGS = 4
 # FastFiz's cue strike (Leckie and Greenspan's equation 1): its ball's mass over its cue's
 # (163.01 g, 600 g).
 FASTFIZ_MASS_RATIO = 163.01 / 600.0
@@ -93,33 +99,107 @@ def perturb(
     return clamp_shot(played.angle + shot.squirt() - played.squirt(), played.speed, *played.tip)
 
 
+Window = Callable[[float], tuple[tuple[float, float] | None, int]]
+
+
 def aim_for_throw(
-    table: Table, balls: BallSet, shot: Shot, target: int, pocket: int
+    table: Table,
+    balls: BallSet,
+    shot: Shot,
+    target: int,
+    pocket: int,
+    window: Window | None = None,
 ) -> tuple[Shot, int]:
     """`shot` with its aim turned so that the exact stroke sends `target` at the centre of
     `pocket`, and the simulations that took. The ghost-ball line ignores the throw of the
     collision (the friction between the balls turns the object ball 1-3 degrees towards
     the cue ball's path on a slow cut, in the engine as on a real table); under the pro's
     aim error that alone missed a 30-degree cut of 0.8 m a third of the time
-    (docs/ai.md). A secant of two engine shots finds the aim; speed and tip stay."""
+    (docs/ai.md). A secant of two engine shots finds the aim; speed and tip stay.
+
+    The centre is the middle of the mouth, or with `window` (the object ball's speed ->
+    the directions it drops in and the simulations that took, as `pocket_window`) the
+    middle of the directions in which the ball drops: a ball that comes at a corner pocket along
+    a cushion, or past the point of a side pocket, drops over a range of directions that
+    lies to one side of the mouth's middle (docs/ai.md, "Window round")."""
     ox, oy = balls.position_of(target)
     ax, ay = pockets_of(table).aims[pocket]
     want = math.atan2(ay - oy, ax - ox)
-    first = departure(table, balls, shot, target)
-    if first is None:
+    left = leaving(table, balls, shot, target)
+    if left is None:
         return shot, 1
+    first, speed = left
+    used = 1
+    if window is not None:
+        edges, looked = window(speed)
+        used += looked
+        if edges is not None:
+            want = (edges[0] + edges[1]) / 2
     nudged = clamp_shot(shot.angle + THROW_STEP, shot.speed, *shot.tip)
     second = departure(table, balls, nudged, target)
+    used += 1
     if second is None:
-        return shot, 2
+        return shot, used
     err = math.remainder(first - want, 2 * math.pi)
     slope = math.remainder(second - first, 2 * math.pi) / THROW_STEP
     if abs(slope) < 1.0:  # the object ball hardly follows the aim: not a clean hit
-        return shot, 2
+        return shot, used
     if abs(err) > THROW_MAX:
-        return shot, 2
+        return shot, used
     step = -err / slope
-    return clamp_shot(shot.angle + step, shot.speed, *shot.tip), 2
+    return clamp_shot(shot.angle + step, shot.speed, *shot.tip), used
+
+
+def pocket_window(
+    table: Table, balls: BallSet, target: int, pocket: int, speed: float, toward: float
+) -> tuple[tuple[float, float] | None, int]:
+    """The directions (lowest, highest) in which `target`, sent off at `speed` with no spin
+    (as a hit ball leaves), drops in `pocket`: the run of them around `toward`, each edge
+    found by steps of `WINDOW_STEP` and then halvings; and the simulations that took. The
+    engine rolls the ball alone among the other object balls (the cue ball that hit it is
+    gone), so the jaws, the facings and a ball near the path all count. None when it does
+    not drop along `toward`; an edge further than `WINDOW_REACH` is put there."""
+    alone = lone_ball(balls, target)
+    used = 1
+    if not rolls_in(table, alone, toward, speed, pocket):
+        return None, used
+    edges = []
+    for sign in (-1.0, 1.0):
+        inside, outside = 0.0, WINDOW_REACH
+        while inside + WINDOW_STEP <= WINDOW_REACH:
+            used += 1
+            if not rolls_in(table, alone, toward + sign * (inside + WINDOW_STEP), speed, pocket):
+                outside = inside + WINDOW_STEP
+                break
+            inside += WINDOW_STEP
+        else:
+            edges.append(toward + sign * WINDOW_REACH)
+            continue
+        for _ in range(WINDOW_HALVINGS):
+            middle = (inside + outside) / 2
+            used += 1
+            if rolls_in(table, alone, toward + sign * middle, speed, pocket):
+                inside = middle
+            else:
+                outside = middle
+        edges.append(toward + sign * (inside + outside) / 2)
+    return (edges[0], edges[1]), used
+
+
+def lone_ball(balls: BallSet, target: int) -> BallSet:
+    """The table with the cue ball gone and, in `target`'s place, a ball the engine can
+    send off (the cue ball's id: a `Shot` strikes only that)."""
+    placement = {b: balls.position_of(b) for b in balls.on_table_ids() if b not in (CUE, target)}
+    placement[CUE] = balls.position_of(target)
+    return BallSet.place(placement)
+
+
+def rolls_in(table: Table, alone: BallSet, angle: float, speed: float, pocket: int) -> bool:
+    """The lone ball of `lone_ball`, sent along `angle` at `speed` with no spin, drops in
+    `pocket`."""
+    result = settle(table, alone, Shot(math.remainder(angle, 2 * math.pi), speed, (0.0, 0.0)))
+    final = result.final
+    return int(final.pockets[final.index(CUE)]) == pocket
 
 
 def _first_hit(events: Sequence[Event], target: int) -> int | None:
@@ -135,6 +215,14 @@ def departure(table: Table, balls: BallSet, shot: Shot, target: int) -> float | 
     """The direction `target` leaves in when `shot` hits it first (from the engine's
     frames, so with the throw), or None when it is not the first ball hit or is stopped
     at once."""
+    left = leaving(table, balls, shot, target)
+    return None if left is None else left[0]
+
+
+def leaving(table: Table, balls: BallSet, shot: Shot, target: int) -> tuple[float, float] | None:
+    """The direction `target` leaves in when `shot` hits it first, and its speed then (from
+    the engine's frames, `THROW_LOOK` after the contact at most), or None when it is not
+    the first ball hit or is stopped at once."""
     result = simulate(table, balls, shot)
     hit = _first_hit(result.events, target)
     if hit is None:
@@ -149,9 +237,11 @@ def departure(table: Table, balls: BallSet, shot: Shot, target: int) -> float | 
     row = result.final.index(target)  # the rows of the frames are those of the set
     x, y = frames.positions[k, row]
     ox, oy = balls.position_of(target)
-    if math.hypot(x - ox, y - oy) < 1e-3:
+    travelled = math.hypot(x - ox, y - oy)
+    if travelled < 1e-3:
         return None
-    return math.atan2(y - oy, x - ox)
+    elapsed = (k + 1) * frames.tick - contact.time
+    return math.atan2(y - oy, x - ox), travelled / elapsed
 
 
 def aim_carom(

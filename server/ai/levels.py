@@ -33,7 +33,9 @@ class Level:
     lookahead: how many of the best pots get a simulated search of the next shot from the
     table they leave; calibrated: it ranks unsimulated pots with the chance model fitted
     to the engine; late_strokes: that search tries more strokes late in a rack
-    (`search.LATE_BALLS`).
+    (`search.LATE_BALLS`); windows: it aims a pot at the middle of the directions in
+    which the ball drops, found with the engine (`aiming.pocket_window`), not at the
+    middle of the mouth.
     """
 
     name: str
@@ -54,6 +56,7 @@ class Level:
     lookahead: int = 0
     calibrated: bool = False
     late_strokes: bool = False
+    windows: bool = False
 
     @property
     def chance_model(self) -> ChanceModel:
@@ -75,11 +78,14 @@ class Level:
         return self.tip_mm * 1e-3 / BALL_RADIUS
 
 
+# fmt: off
 LEVEL_TABLE: tuple[Level, ...] = (
     Level("beginner", 1.5, 0.30, 3.0, 4, 2, 1, 3, 4, False, 1, 0.2, budget=200),
     Level("amateur", 0.7, 0.18, 2.0, 6, 3, 3, 4, 6, True, 2, 0.6, budget=350),
     Level("club", 0.35, 0.11, 1.0, 8, 3, 3, 6, 10, True, 3, 1.0, 2, 10, 550, 2),
-    Level("pro", 0.125, 0.075, 0.5, 16, 4, 5, 16, 30, True, 3, 1.0, 4, 60, 3600, 14, True, True),
+    Level("pro", 0.125, 0.075, 0.5, 16, 4, 5, 16, 30, True, 3, 1.0, 4, 60, 3900, 14, True, True,
+          windows=True),
 )
+# fmt: on
 LEVELS: tuple[str, ...] = tuple(level.name for level in LEVEL_TABLE)
 BY_NAME: dict[str, Level] = {level.name: level for level in LEVEL_TABLE}

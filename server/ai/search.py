@@ -9,6 +9,7 @@ foul gives the opponent ball in hand.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Iterable
 from dataclasses import dataclass, field, replace
@@ -23,12 +24,13 @@ from server.rules.ruling import Ruling
 from server.rules.shotfacts import ShotFacts, shot_facts
 from server.rules.spotting import respot
 
-from .aiming import aim_carom, aim_for_throw, aimed, clamp_shot, perturb
+from .aiming import aim_carom, aim_for_throw, aimed, clamp_shot, perturb, pocket_window
 from .geometry import (
     MIN_AIM_SIGMA,
     PotOption,
     best_chance,
     open_share,
+    pockets_of,
     pot_options,
     speed_for,
 )
@@ -83,6 +85,7 @@ BANK_ROUTES, COMBOS, CAROMS = 2, 2, 2
 BANK_SPEED_FACTORS = (1.25, 1.8, 2.6)
 COMBO_SPEED_FACTORS = (1.25, 1.8, 3.0)
 CAROM_SPEED_FACTORS = (1.25, 1.8, 2.6)
+WINDOW_SPEED_STEP = 0.25  # m/s: a pocket's window is found once per step of the ball's speed
 
 
 def _strokes(
@@ -107,6 +110,12 @@ def _strokes(
         for factor in speeds
         for side, height in tips
     ]
+
+
+def _object_balls(balls: BallSet) -> bytes:
+    """The object balls' places, as a key: what a pocket's window depends on."""
+    keep = (balls.ids != CUE) & balls.on_table
+    return np.ascontiguousarray(balls.positions[keep]).tobytes()
 
 
 def route(events: list[Event], ball: int, first_contact: int | None) -> str:
@@ -170,6 +179,7 @@ class Search:
     confirm_noise: np.ndarray  # fresh draws for the second look at the best few
     sims: int = 0
     limit: int = 1 << 30  # simulations allowed up to now (the level's budget per turn)
+    windows: dict[tuple, tuple[float, float] | None] = field(default_factory=dict)
 
     # --- targets and values -----------------------------------------------------------
     def targets(self, pos: Position) -> list[int]:
@@ -327,6 +337,8 @@ class Search:
         if self.limit - self.sims >= keep * (len(self.noise) + 2):
             for cand in chosen:
                 self.allow_for_throw(balls, cand)
+            # The windows' simulations (`Search.window`) may leave room for fewer.
+            chosen = chosen[: max(1, (self.limit - self.sims) // max(len(self.noise), 1))]
         for cand in chosen:
             self.score_noisy(balls, cand)
         chosen.sort(key=lambda c: -c.value)
@@ -361,8 +373,33 @@ class Search:
         direct = cand.kind == "pot" and cand.via == "direct"
         if not direct or cand.target is None or cand.pocket is None:
             return
-        cand.shot, used = aim_for_throw(self.table, balls, cand.shot, cand.target, cand.pocket)
+        window = None
+        if self.level.windows:
+            window = functools.partial(self.window, balls, cand.target, cand.pocket)
+        cand.shot, used = aim_for_throw(
+            self.table, balls, cand.shot, cand.target, cand.pocket, window
+        )
         self.sims += used
+
+    def window(
+        self, balls: BallSet, target: int, pocket: int, speed: float
+    ) -> tuple[tuple[float, float] | None, int]:
+        """`pocket_window` for `target` leaving at about `speed` (to `WINDOW_SPEED_STEP`),
+        and the simulations that took. Kept for the turn: the window does not depend on
+        the cue ball (it is gone), so a pot's strokes of about one speed, and the same pot
+        from every ball-in-hand spot, share it."""
+        step = max(round(speed / WINDOW_SPEED_STEP), 1)
+        key = (target, pocket, step, _object_balls(balls))
+        if key in self.windows:
+            return self.windows[key], 0
+        ox, oy = balls.position_of(target)
+        ax, ay = pockets_of(self.table).aims[pocket]
+        toward = math.atan2(ay - oy, ax - ox)
+        found, used = pocket_window(
+            self.table, balls, target, pocket, step * WINDOW_SPEED_STEP, toward
+        )
+        self.windows[key] = found
+        return found, used
 
     def look_ahead(self, balls: BallSet, cand: Candidate) -> bool:
         """Replace the quick estimate of the position a pot leaves by a search of the next
