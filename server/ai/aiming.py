@@ -99,7 +99,9 @@ def perturb(
     return clamp_shot(played.angle + shot.squirt() - played.squirt(), played.speed, *played.tip)
 
 
-Window = Callable[[float], tuple[tuple[float, float] | None, int]]
+# The object ball's speed and the direction of the mouth's middle -> the directions in which
+# it drops, and the simulations that took (as `pocket_window`).
+Window = Callable[[float, float], tuple[tuple[float, float] | None, int]]
 
 
 def aim_for_throw(
@@ -117,11 +119,10 @@ def aim_for_throw(
     aim error that alone missed a 30-degree cut of 0.8 m a third of the time
     (docs/ai.md). A secant of two engine shots finds the aim; speed and tip stay.
 
-    The centre is the middle of the mouth, or with `window` (the object ball's speed ->
-    the directions it drops in and the simulations that took, as `pocket_window`) the
-    middle of the directions in which the ball drops: a ball that comes at a corner pocket along
-    a cushion, or past the point of a side pocket, drops over a range of directions that
-    lies to one side of the mouth's middle (docs/ai.md, "Window round")."""
+    The centre is the middle of the mouth, or with `window` the middle of the directions
+    in which the ball drops: a ball that comes at a corner pocket along a cushion drops
+    over a range of directions that lies mostly to one side of the mouth's middle
+    (docs/ai.md, "Window round")."""
     ox, oy = balls.position_of(target)
     ax, ay = pockets_of(table).aims[pocket]
     want = math.atan2(ay - oy, ax - ox)
@@ -131,7 +132,7 @@ def aim_for_throw(
     first, speed = left
     used = 1
     if window is not None:
-        edges, looked = window(speed)
+        edges, looked = window(speed, want)
         used += looked
         if edges is not None:
             want = (edges[0] + edges[1]) / 2

@@ -30,7 +30,6 @@ from .geometry import (
     PotOption,
     best_chance,
     open_share,
-    pockets_of,
     pot_options,
     speed_for,
 )
@@ -382,7 +381,7 @@ class Search:
         self.sims += used
 
     def window(
-        self, balls: BallSet, target: int, pocket: int, speed: float
+        self, balls: BallSet, target: int, pocket: int, speed: float, toward: float
     ) -> tuple[tuple[float, float] | None, int]:
         """`pocket_window` for `target` leaving at about `speed` (to `WINDOW_SPEED_STEP`),
         and the simulations that took. Kept for the turn: the window does not depend on
@@ -392,9 +391,6 @@ class Search:
         key = (target, pocket, step, _object_balls(balls))
         if key in self.windows:
             return self.windows[key], 0
-        ox, oy = balls.position_of(target)
-        ax, ay = pockets_of(self.table).aims[pocket]
-        toward = math.atan2(ay - oy, ax - ox)
         found, used = pocket_window(
             self.table, balls, target, pocket, step * WINDOW_SPEED_STEP, toward
         )
