@@ -503,9 +503,10 @@ def pot_rates(configs: int, seed: int) -> np.ndarray:
     """Random one-ball pots (cue ball, object ball and pocket anywhere the geometry allows),
     each played `CALIBRATE_TRIALS` times with the top level's noise as its search plans it
     (the tip's error squirting the line too, `Search.noisy`; centre ball, 1.8 or 2.4
-    times the speed that just reaches, aimed for the throw as the computer aims): rows of
-    (d1, d2, cut, side pocket, cos of the approach to the mouth, measured rate)."""
-    from server.ai.aiming import aim_for_throw, aimed, perturb
+    times the speed that just reaches, aimed for the throw as the computer aims, at the
+    middle of the pocket's window when the level aims so): rows of (d1, d2, cut, side
+    pocket, cos of the approach to the mouth, measured rate)."""
+    from server.ai.aiming import aim_for_throw, aimed, perturb, pocket_window
     from server.ai.geometry import pockets_of
     from server.engine import BallSet, Table, simulate
 
@@ -527,7 +528,10 @@ def pot_rates(configs: int, seed: int) -> np.ndarray:
         o = options[int(rng.integers(len(options)))]
         factor = (1.8, 2.4)[int(rng.integers(2))]
         shot = aimed(o.angle, min(speed_for(o) * factor, 0.85 * 12.0), 0.0, 0.0)
-        shot, _ = aim_for_throw(table, balls, shot, 1, o.pocket)
+        window = None
+        if level.windows:
+            window = functools.partial(pocket_window, table, balls, 1, o.pocket)
+        shot, _ = aim_for_throw(table, balls, shot, 1, o.pocket, window)
         made = 0
         for _ in range(CALIBRATE_TRIALS):
             draws = rng.standard_normal(4)
@@ -570,10 +574,10 @@ def model_rates(data: np.ndarray, model: ChanceModel, aim: float, r: float) -> n
 # The grid `calibrate` refits the model on (`geometry.FASTFIZ` is its best point on 3,000
 # pots, seed 11): aim scale, floor (rad), cut term (rad), jaw (m), side-pocket cost (m).
 FIT_GRID = (
-    (1.0, 1.2, 1.4, 1.6, 1.8, 2.0, 2.4),
+    (1.0, 1.2, 1.4, 1.6, 1.8, 2.0, 2.4, 2.8),
     (0.0, 0.005, 0.01, 0.015, 0.02, 0.025),
     (0.0, 0.02, 0.04, 0.06),
-    (0.0, 0.008, 0.016, 0.024, 0.032),
+    (0.0, 0.008, 0.016, 0.024, 0.032, 0.04, 0.048),
     (0.0, 0.01, 0.02),
 )
 EASY = 0.7  # the pots `calibrate` ranks among: those a model calls at least this likely

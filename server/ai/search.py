@@ -63,9 +63,10 @@ FINE_TIPS = (*TIPS, (0.0, 0.18), (0.0, -0.18), (0.3, -0.15), (-0.3, -0.15))
 # Late in a rack (this many balls or fewer to pot before the game ball, and few pots on)
 # the next-shot search of a level with `late_strokes` tries more strokes on each pot: the
 # position for the last balls is where the racks are lost (docs/ai.md, "End-of-rack
-# round"), and there the budget goes partly unspent.
+# round"), and there the budget goes partly unspent. Its speeds reach softer and firmer
+# than the four it had first, which cleared fewer racks (docs/ai.md, "Late-leaves round").
 LATE_BALLS = 2
-LATE_SPEED_FACTORS = (1.25, 1.8, 2.4, 3.0)
+LATE_SPEED_FACTORS = (1.1, 1.4, 1.8, 2.4, 3.0, 3.8)
 LATE_LOOK_SIMS = LOOK_PAIRS * len(LATE_SPEED_FACTORS) * len(TIPS)  # what that search may take
 # Safeties: hits on a legal ball from full to thin (a fraction of the widest offset that
 # still hits it), soft to firm, with centre ball, draw and follow. Where the cue ball stops
