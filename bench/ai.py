@@ -5,7 +5,7 @@ ladder of levels, plan times and per-game counts.
                        [--kind eight_ball] [--seed 0] [--jobs 1]
                        [--rooms 2] [--workers 1] [--seconds 10] [--configs 1200] [--fit]
                        [--save outcomes.json] [--paired earlier.json]
-                       [--noise aim,speed,tip] [--table 9ft]
+                       [--noise aim,speed,tip] [--table 9ft] [--steps pro]
 
 `calibrate`: the pot chance the search plans with against the engine's measured rates
 under the top level's noise (what `geometry.FASTFIZ` was fitted to); `--fit` refits it.
@@ -742,6 +742,17 @@ def match(
     return won
 
 
+def ladder_steps(text: str) -> tuple[str, ...]:
+    """`--steps`: the stronger levels of the ladder's steps to play (not the weakest)."""
+    steps = tuple(name.strip() for name in text.split(",") if name.strip())
+    unknown = [name for name in steps if name not in LEVELS[1:]]
+    if unknown or not steps:
+        raise argparse.ArgumentTypeError(
+            f"steps are named by their stronger level, one of {', '.join(LEVELS[1:])}"
+        )
+    return steps
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--games", type=int, default=200, help="games per comparison")
@@ -774,6 +785,13 @@ def main(argv: list[str] | None = None) -> int:
         default="9ft",
         help="the table every rack and game is played on (the rooms' is 9ft; the "
         "tournaments' FastFiz table, 2.236 x 1.116 m, is nearest the 8ft)",
+    )
+    parser.add_argument(
+        "--steps",
+        type=ladder_steps,
+        default=LEVELS[1:],
+        help="the ladder's steps to play, each named by its stronger level (a comma list, "
+        "e.g. pro: only the pro against the club); all by default",
     )
     args = parser.parse_args(argv)
     parts = set(args.only.split(","))
@@ -819,6 +837,8 @@ def main(argv: list[str] | None = None) -> int:
     if "ladder" in parts:
         print(f"the ladder ({args.kind}, each level against the one below):")
         for weak, strong in zip(LEVELS, LEVELS[1:], strict=False):
+            if strong not in args.steps:
+                continue
             won = match(args.kind, strong, weak, args.games, args.seed, args.jobs, args.table)
             outcomes[f"{args.kind} {strong} vs {weak}"] = won
     if args.save:

@@ -74,6 +74,18 @@ def test_a_saved_run_replays_seed_for_seed_and_the_report_counts_differences(
     assert "pots made by the chance planned" in report
 
 
+def test_the_ladder_plays_only_the_steps_asked_for(tmp_path: Path) -> None:
+    """`--steps`: a change to one level is measured on its step alone; the others, whose
+    play it does not touch, are not replayed."""
+    saved = tmp_path / "ladder.json"
+    main(["--only", "ladder", "--steps", "amateur", "--games", "2", "--save", str(saved)])
+    outcomes = json.loads(saved.read_text())
+    assert list(outcomes) == ["eight_ball amateur vs beginner"]
+    assert sorted(outcomes["eight_ball amateur vs beginner"]) == ["0", "1"]
+    with pytest.raises(SystemExit):
+        main(["--only", "ladder", "--steps", "beginner"])  # the weakest level has no step
+
+
 def test_the_carom_benchmark_finds_the_engine_corrected_aims_drop_more(
     capsys: pytest.CaptureFixture[str],
 ) -> None:
