@@ -196,13 +196,19 @@ class Arm:
 BREAK_NOISE = (*FULL_NOISE, "squirt", "ball-speed")
 
 
+def known_names(text: str, known: tuple[str, ...], what: str) -> tuple[str, ...]:
+    """An option's comma list of names, each one of `known` (empty items skipped)."""
+    names = tuple(name for name in text.split(",") if name)
+    unknown = [name for name in names if name not in known]
+    if unknown:
+        raise argparse.ArgumentTypeError(f"unknown {what} {unknown[0]!r}: {known}")
+    return names
+
+
 def noise_parts(text: str) -> tuple[str, ...]:
     """`--noise`'s comma list: parts of `NOISE_PARTS`, or "none" for exact strokes."""
-    parts = tuple(p for p in text.split(",") if p and p != "none")
-    unknown = [p for p in parts if p not in NOISE_PARTS]
-    if unknown:
-        raise argparse.ArgumentTypeError(f"unknown noise part {unknown[0]!r}: {NOISE_PARTS}")
-    return parts
+    parts = known_names(text, (*NOISE_PARTS, "none"), "noise part")
+    return tuple(part for part in parts if part != "none")
 
 
 # --- statistics -----------------------------------------------------------------------
@@ -744,12 +750,9 @@ def match(
 
 def ladder_steps(text: str) -> tuple[str, ...]:
     """`--steps`: the stronger levels of the ladder's steps to play (not the weakest)."""
-    steps = tuple(name.strip() for name in text.split(",") if name.strip())
-    unknown = [name for name in steps if name not in LEVELS[1:]]
-    if unknown or not steps:
-        raise argparse.ArgumentTypeError(
-            f"steps are named by their stronger level, one of {', '.join(LEVELS[1:])}"
-        )
+    steps = known_names(text, LEVELS[1:], "step (named by its stronger level)")
+    if not steps:
+        raise argparse.ArgumentTypeError(f"name at least one step: {LEVELS[1:]}")
     return steps
 
 
