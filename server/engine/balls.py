@@ -123,10 +123,10 @@ class BallSet:
 
     def index(self, ball_id: int) -> int:
         """Row of ball `ball_id`; KeyError when the set does not hold it."""
-        rows = np.flatnonzero(self.ids == ball_id)
-        if len(rows) == 0:
-            raise KeyError(ball_id)
-        return int(rows[0])
+        try:  # a list's index: a few times quicker than numpy's on a rack's 16 ids
+            return self.ids.tolist().index(ball_id)
+        except ValueError:
+            raise KeyError(ball_id) from None
 
     @property
     def on_table(self) -> np.ndarray:

@@ -54,6 +54,21 @@ def _geometry(table: Table) -> _Geometry:
     return geo
 
 
+_last_params: tuple[PhysicsParams, np.ndarray] | None = None
+
+
+def _params_array(params: PhysicsParams) -> np.ndarray:
+    """`params.array()`, kept for the parameters last asked for (found by identity, as the
+    table is): building it cost as much as a short shot's strike. The kernels only read it."""
+    global _last_params
+    last = _last_params
+    if last is not None and last[0] is params:
+        return last[1]
+    values = params.array()
+    _last_params = (params, values)
+    return values
+
+
 def strike(
     balls: BallSet, shot: Shot, params: PhysicsParams = DEFAULT_PARAMS, time: float = 0.0
 ) -> Event:
@@ -111,7 +126,7 @@ def step(
         geo.centers,
         geo.length,
         geo.width,
-        params.array(),
+        _params_array(params),
         float(tick),
         float(time),
         events,
@@ -150,8 +165,9 @@ def _drop_residual_spin(state: BallSet) -> None:
     """A ball that has stopped translating keeps spinning about the vertical a little while,
     which cannot move it any more: the shot's final table drops that spin."""
     spinning = state.states == SPINNING
-    state.spins[spinning] = 0.0
-    state.states[spinning] = STATIONARY
+    if spinning.any():
+        state.spins[spinning] = 0.0
+        state.states[spinning] = STATIONARY
 
 
 class ShotInMotion:
@@ -173,7 +189,7 @@ class ShotInMotion:
         self.state = balls.copy()
         self._events = [strike(self.state, shot, params)]
         self._geometry = _geometry(table)
-        self._params = params.array()
+        self._params = _params_array(params)
         self._raw: tuple | None = None
 
     def run(self) -> None:
@@ -222,7 +238,7 @@ def settle(
     state = balls.copy()
     first = strike(state, shot, params)
     *_, rows, stalls, ticks = _run_kernel(
-        _geometry(table), state, float(tick), params.array(), frames=False
+        _geometry(table), state, float(tick), _params_array(params), frames=False
     )
     _drop_residual_spin(state)
     events = [first, *_events_from(rows, state.ids)]
@@ -238,7 +254,7 @@ def run_to_rest(
 ) -> FrameSequence:
     """Advance `state` in place until no ball moves; appends events to `events`."""
     positions, cels, on_table, rows, _, _ = _run_kernel(
-        _geometry(table), state, float(tick), params.array()
+        _geometry(table), state, float(tick), _params_array(params)
     )
     if events is not None:
         events.extend(_events_from(rows, state.ids))

@@ -60,7 +60,8 @@ def _moving(s):
     return s == SLIDING or s == ROLLING
 
 
-@njit(cache=True)
+# Inlined into the tick loop (see `tick.run_tick`).
+@njit(cache=True, inline="always")
 def earliest_event(pos, vel, st, n, horizon, cush, jaws, pockets, length, width, p):
     """The first collision of any kind within `horizon` seconds.
 
