@@ -4,8 +4,8 @@ Why: the engine moves each ball in straight sub-steps that end at tick boundarie
 friction changes and at every event (ball, cushion, jaw, pocket, rest). Frames at a fixed
 rate cut every contact that falls between two of them (a cue ball drawn turning a ball's
 width short of the rail). Here the shot is run again through the engine's own compiled
-tick (`run_tick`, unchanged, called exactly as `run_to_rest_kernel` calls it, so the ticks
-are the engine's bit for bit), and each tick holding events is replayed from its start up
+tick (`run_tick`: the tick `run_to_rest_kernel` runs, one at a time, at the same times, so
+the ticks are the engine's bit for bit), and each tick holding events is replayed from its start up
 to each event's time, which gives every ball's exact position there. Per ball, the samples
 (tick ends and event times) are thinned to the knots a straight-line interpolation needs to
 stay within `TOLERANCE` of all of them; knots at the ball's own events are always kept.
@@ -414,8 +414,8 @@ _MAX_TICKS = int(MAX_SHOT_SECONDS / DEFAULT_TICK)
 
 def run_traced(table: Table, motion: ShotInMotion) -> Tracks:
     """`motion.run()` and the shot's tracks from one pass over its ticks: the engine's own
-    `run_tick`, called exactly as `ShotInMotion.run` has it called (same arrays, same
-    order), so `motion.result()` is then what it would have been, bit for bit (tested
+    `run_tick`, the tick `ShotInMotion.run` runs (same arrays, same order, same times),
+    so `motion.result()` is then what it would have been, bit for bit (tested
     against `simulate`). Compiled, without the GIL: run it in a worker thread."""
     s = motion.state
     ids = s.ids.astype(np.int64)

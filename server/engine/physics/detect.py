@@ -60,7 +60,7 @@ def _moving(s):
     return s == SLIDING or s == ROLLING
 
 
-# Inlined into the tick loop (see `tick.run_tick`).
+# Inlined into the tick loop (see `tick.run_ticks`).
 @njit(cache=True, inline="always")
 def earliest_event(pos, vel, st, n, horizon, cush, jaws, pockets, length, width, p):
     """The first collision of any kind within `horizon` seconds.

@@ -50,9 +50,7 @@ def _record(events, n_ev, time, kind, a, b, speed, target):
     return n_ev + 1
 
 
-# Inlined (numba's IR inlining) into the shot's loop, with the detection and motion it
-# calls: a compiled call per tick passing a dozen arrays cost about an eighth of a shot.
-@njit(cache=True, nogil=True, inline="always")
+@njit(cache=True, nogil=True)
 def run_tick(
     pos,
     vel,
@@ -79,67 +77,130 @@ def run_tick(
     and stopped early (the balls are left where they are: no overlap).
     """
     n = pos.shape[0]
+    n_ev, stalls, _ = run_ticks(
+        pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width, p,
+        dt, t0, 0, 1, False, events, n_ev, 0,
+        np.empty((0, n, 2)), np.empty((0, n), dtype=np.int64), np.empty((0, n), dtype=np.bool_),
+        False,
+    )  # fmt: skip
+    return n_ev, stalls > 0
+
+
+@njit(cache=True, nogil=True)
+def run_ticks(
+    pos,
+    vel,
+    w,
+    st,
+    phase,
+    pocket_of,
+    cush,
+    jaws,
+    pockets,
+    centers,
+    length,
+    width,
+    p,
+    dt,
+    t_start,
+    ticks,
+    last_tick,
+    until_rest,
+    events,
+    n_ev,
+    free_rows,
+    frame_pos,
+    frame_cels,
+    frame_on,
+    frames,
+):
+    """Ticks `ticks`, `ticks` + 1, ... (tick k starts at t_start + k dt) up to `last_tick`,
+    stopping early once no ball moves (with `until_rest`), before a tick when fewer than
+    `free_rows` event rows are free, or when `frames` is set and the frame arrays are full
+    (the caller grows them and calls again): the tick loop and each tick's work in one
+    function, since every compiled call with these dozen arrays, even one inlined, costs
+    their reference counts, and per tick that was about half of a search's shot.
+
+    Each frame, when `frames`, is the table at the end of its tick. Returns (n_ev, stalls,
+    ticks): the event rows used, the ticks that stalled (hit MAX_EVENTS_PER_TICK and
+    stopped early, the balls left where they are: no overlap), the next tick's number."""
+    n = pos.shape[0]
     radius = p[P_RADIUS]
-    elapsed = 0.0
-    count = 0
-    first_ev = n_ev
-    while elapsed < dt:
-        remaining = dt - elapsed
-        horizon = remaining
-        for i in range(n):
-            if st[i] == SLIDING or st[i] == ROLLING:
-                tt = transition_time(st[i], vel[i, 0], vel[i, 1], w[i, 0], w[i, 1], p)
-                if tt < horizon:
-                    horizon = tt
-        t, kind, a, b = earliest_event(
-            pos, vel, st, n, horizon, cush, jaws, pockets, length, width, p
-        )
-        if kind != EV_NONE:
-            advance(pos, vel, w, st, phase, n, t, p)
-            elapsed += t
-            now = t0 + elapsed
-            if kind == EV_BALL:
-                speed = ball_ball(pos, vel, w, st, a, b, p)
-                if speed > 0.0:
-                    n_ev = _record(events, n_ev, now, EV_BALL, a, b, speed, -1)
-            elif kind == EV_CUSHION:
-                speed = cushion(vel, w, st, a, b, cush, p)
-                if speed > 0.0:
-                    n_ev = _record(events, n_ev, now, EV_CUSHION, a, -1, speed, b)
-            elif kind == EV_JAW:
-                speed = jaw(pos, vel, w, st, a, b, jaws, p)
-                if speed > 0.0:
-                    target = b if b < jaws.shape[0] else b - jaws.shape[0]
-                    n_ev = _record(events, n_ev, now, EV_JAW, a, -1, speed, target)
-            else:
-                speed = pocket(pos, vel, w, st, pocket_of, a, b, centers)
-                n_ev = _record(events, n_ev, now, EV_POCKET, a, -1, speed, b)
-            count += 1
-            if count >= MAX_EVENTS_PER_TICK:
-                # A Zeno loop: e.g. a spinning ball pressed against a still one collides
-                # again at once, forever. Stop the balls of this event so the shot ends.
-                n_ev = _distinct(events, first_ev, n_ev)
-                n_ev = _halt(vel, w, st, a, now, events, n_ev, radius)
+    stalls = 0
+    while ticks < last_tick and (not until_rest or any_moving(st)):
+        if events.shape[0] - n_ev < free_rows or (frames and ticks == frame_pos.shape[0]):
+            break
+        t0 = t_start + ticks * dt
+        stalled = False
+        elapsed = 0.0
+        count = 0
+        first_ev = n_ev
+        while elapsed < dt:
+            remaining = dt - elapsed
+            horizon = remaining
+            for i in range(n):
+                if st[i] == SLIDING or st[i] == ROLLING:
+                    tt = transition_time(st[i], vel[i, 0], vel[i, 1], w[i, 0], w[i, 1], p)
+                    if tt < horizon:
+                        horizon = tt
+            t, kind, a, b = earliest_event(
+                pos, vel, st, n, horizon, cush, jaws, pockets, length, width, p
+            )
+            if kind != EV_NONE:
+                advance(pos, vel, w, st, phase, n, t, p)
+                elapsed += t
+                now = t0 + elapsed
                 if kind == EV_BALL:
-                    n_ev = _halt(vel, w, st, b, now, events, n_ev, radius)
-                return n_ev, True
-            continue
-        # No collision before the horizon: move there and finish any state change.
-        advance(pos, vel, w, st, phase, n, horizon, p)
-        if horizon >= remaining:
-            elapsed = dt
-        else:
-            elapsed += horizon
-        now = t0 + elapsed
-        # After advancing exactly to a transition, round-off can leave a sliver of slip or
-        # speed: a ball within a nanosecond of its transition has reached it.
-        for i in range(n):
-            if st[i] != SLIDING and st[i] != ROLLING:
+                    speed = ball_ball(pos, vel, w, st, a, b, p)
+                    if speed > 0.0:
+                        n_ev = _record(events, n_ev, now, EV_BALL, a, b, speed, -1)
+                elif kind == EV_CUSHION:
+                    speed = cushion(vel, w, st, a, b, cush, p)
+                    if speed > 0.0:
+                        n_ev = _record(events, n_ev, now, EV_CUSHION, a, -1, speed, b)
+                elif kind == EV_JAW:
+                    speed = jaw(pos, vel, w, st, a, b, jaws, p)
+                    if speed > 0.0:
+                        target = b if b < jaws.shape[0] else b - jaws.shape[0]
+                        n_ev = _record(events, n_ev, now, EV_JAW, a, -1, speed, target)
+                else:
+                    speed = pocket(pos, vel, w, st, pocket_of, a, b, centers)
+                    n_ev = _record(events, n_ev, now, EV_POCKET, a, -1, speed, b)
+                count += 1
+                if count >= MAX_EVENTS_PER_TICK:
+                    # A Zeno loop: e.g. a spinning ball pressed against a still one collides
+                    # again at once, forever. Stop the balls of this event so the shot ends.
+                    n_ev = _distinct(events, first_ev, n_ev)
+                    n_ev = _halt(vel, w, st, a, now, events, n_ev, radius)
+                    if kind == EV_BALL:
+                        n_ev = _halt(vel, w, st, b, now, events, n_ev, radius)
+                    stalled = True
+                    break
                 continue
-            tt = transition_time(st[i], vel[i, 0], vel[i, 1], w[i, 0], w[i, 1], p)
-            if tt <= 1e-9 and finish_transition(vel, w, st, i, radius):
-                n_ev = _record(events, n_ev, now, EV_REST, i, -1, 0.0, -1)
-    return n_ev, False
+            # No collision before the horizon: move there and finish any state change.
+            advance(pos, vel, w, st, phase, n, horizon, p)
+            if horizon >= remaining:
+                elapsed = dt
+            else:
+                elapsed += horizon
+            now = t0 + elapsed
+            # After advancing exactly to a transition, round-off can leave a sliver of slip or
+            # speed: a ball within a nanosecond of its transition has reached it.
+            for i in range(n):
+                if st[i] != SLIDING and st[i] != ROLLING:
+                    continue
+                tt = transition_time(st[i], vel[i, 0], vel[i, 1], w[i, 0], w[i, 1], p)
+                if tt <= 1e-9 and finish_transition(vel, w, st, i, radius):
+                    n_ev = _record(events, n_ev, now, EV_REST, i, -1, 0.0, -1)
+        if stalled:
+            stalls += 1
+        if frames:
+            frame_pos[ticks] = pos
+            cels_of(phase, st, frame_cels[ticks], p)
+            for i in range(n):
+                frame_on[ticks, i] = st[i] != POCKETED
+        ticks += 1
+    return n_ev, stalls, ticks
 
 
 @njit(cache=True)
@@ -242,33 +303,12 @@ def run_to_rest_kernel(
             frame_on = _grown(frame_on, cap)
         if events.shape[0] - n_ev <= MAX_EVENTS_PER_TICK + 64:
             events = _grown(events, 2 * events.shape[0])
-        n_ev, stalled = run_tick(
-            pos,
-            vel,
-            w,
-            st,
-            phase,
-            pocket_of,
-            cush,
-            jaws,
-            pockets,
-            centers,
-            length,
-            width,
-            p,
-            dt,
-            ticks * dt,
-            events,
-            n_ev,
-        )
-        if stalled:
-            stalls += 1
-        if frames:
-            frame_pos[ticks] = pos
-            cels_of(phase, st, frame_cels[ticks], p)
-            for i in range(n):
-                frame_on[ticks, i] = st[i] != POCKETED
-        ticks += 1
+        n_ev, more_stalls, ticks = run_ticks(
+            pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width, p,
+            dt, 0.0, ticks, max_ticks, True, events, n_ev, MAX_EVENTS_PER_TICK + 65,
+            frame_pos, frame_cels, frame_on, frames,
+        )  # fmt: skip
+        stalls += more_stalls
     kept = ticks if frames else 0
     return (
         frame_pos[:kept].copy(),
