@@ -76,12 +76,9 @@ def run_tick(
     used. Returns (n_ev, stalled): stalled is True when the tick hit MAX_EVENTS_PER_TICK
     and stopped early (the balls are left where they are: no overlap).
     """
-    n = pos.shape[0]
     n_ev, stalls, _ = run_ticks(
         pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width, p,
-        dt, t0, 0, 1, False, events, n_ev, 0,
-        np.empty((0, n, 2)), np.empty((0, n), dtype=np.int64), np.empty((0, n), dtype=np.bool_),
-        False,
+        dt, t0, 0, 1, False, events, n_ev, 0, None, None, None,
     )  # fmt: skip
     return n_ev, stalls > 0
 
@@ -112,23 +109,25 @@ def run_ticks(
     frame_pos,
     frame_cels,
     frame_on,
-    frames,
 ):
     """Ticks `ticks`, `ticks` + 1, ... (tick k starts at t_start + k dt) up to `last_tick`,
     stopping early once no ball moves (with `until_rest`), before a tick when fewer than
-    `free_rows` event rows are free, or when `frames` is set and the frame arrays are full
-    (the caller grows them and calls again): the tick loop and each tick's work in one
-    function, since every compiled call with these dozen arrays, even one inlined, costs
-    their reference counts, and per tick that was about half of a search's shot.
+    `free_rows` event rows are free, or when the frame arrays are full (the caller grows
+    them and calls again; None for no frames: numba compiles that case without them).
+    The tick loop and each tick's work are in one function because every compiled call
+    with these dozen arrays, even an inlined one, costs their reference counts: per tick,
+    about half of a search's shot.
 
-    Each frame, when `frames`, is the table at the end of its tick. Returns (n_ev, stalls,
+    Each frame is the table at the end of its tick. Returns (n_ev, stalls,
     ticks): the event rows used, the ticks that stalled (hit MAX_EVENTS_PER_TICK and
     stopped early, the balls left where they are: no overlap), the next tick's number."""
     n = pos.shape[0]
     radius = p[P_RADIUS]
     stalls = 0
     while ticks < last_tick and (not until_rest or any_moving(st)):
-        if events.shape[0] - n_ev < free_rows or (frames and ticks == frame_pos.shape[0]):
+        if events.shape[0] - n_ev < free_rows:
+            break
+        if frame_pos is not None and ticks == frame_pos.shape[0]:
             break
         t0 = t_start + ticks * dt
         stalled = False
@@ -194,7 +193,7 @@ def run_ticks(
                     n_ev = _record(events, n_ev, now, EV_REST, i, -1, 0.0, -1)
         if stalled:
             stalls += 1
-        if frames:
+        if frame_pos is not None:
             frame_pos[ticks] = pos
             cels_of(phase, st, frame_cels[ticks], p)
             for i in range(n):
@@ -303,11 +302,18 @@ def run_to_rest_kernel(
             frame_on = _grown(frame_on, cap)
         if events.shape[0] - n_ev <= MAX_EVENTS_PER_TICK + 64:
             events = _grown(events, 2 * events.shape[0])
-        n_ev, more_stalls, ticks = run_ticks(
-            pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width, p,
-            dt, 0.0, ticks, max_ticks, True, events, n_ev, MAX_EVENTS_PER_TICK + 65,
-            frame_pos, frame_cels, frame_on, frames,
-        )  # fmt: skip
+        if frames:
+            n_ev, more_stalls, ticks = run_ticks(
+                pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width,
+                p, dt, 0.0, ticks, max_ticks, True, events, n_ev, MAX_EVENTS_PER_TICK + 65,
+                frame_pos, frame_cels, frame_on,
+            )  # fmt: skip
+        else:
+            n_ev, more_stalls, ticks = run_ticks(
+                pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width,
+                p, dt, 0.0, ticks, max_ticks, True, events, n_ev, MAX_EVENTS_PER_TICK + 65,
+                None, None, None,
+            )  # fmt: skip
         stalls += more_stalls
     kept = ticks if frames else 0
     return (
