@@ -5,8 +5,8 @@ friction changes and at every event (ball, cushion, jaw, pocket, rest). Frames a
 rate cut every contact that falls between two of them (a cue ball drawn turning a ball's
 width short of the rail). Here the shot is run again through the engine's own compiled
 tick (`run_tick`: the tick `run_to_rest_kernel` runs, one at a time, at the same times, so
-the ticks are the engine's bit for bit), and each tick holding events is replayed from its start up
-to each event's time, which gives every ball's exact position there. Per ball, the samples
+the ticks are the engine's bit for bit), and each tick holding events is replayed from its
+start up to each event's time, which gives every ball's exact position there. Per ball, the samples
 (tick ends and event times) are thinned to the knots a straight-line interpolation needs to
 stay within `TOLERANCE` of all of them; knots at the ball's own events are always kept.
 

@@ -302,6 +302,8 @@ def run_to_rest_kernel(
             frame_on = _grown(frame_on, cap)
         if events.shape[0] - n_ev <= MAX_EVENTS_PER_TICK + 64:
             events = _grown(events, 2 * events.shape[0])
+        # Two calls, not one with chosen arguments: numba types the frames' arrays and
+        # their absence (None) as two versions of run_ticks, which cannot share a call.
         if frames:
             n_ev, more_stalls, ticks = run_ticks(
                 pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width,
