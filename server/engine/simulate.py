@@ -136,10 +136,16 @@ def step(
 
 
 def _run_kernel(
-    geo: _Geometry, s: BallSet, tick: float, params: np.ndarray, frames: bool = True
+    geo: _Geometry,
+    s: BallSet,
+    tick: float,
+    params: np.ndarray,
+    frames: bool = True,
+    event_capacity: int = _EVENT_CAPACITY,
 ) -> tuple:
     """(frame positions, cels, on-table flags, event rows, stalled ticks, ticks); `s` is
-    advanced in place to rest. Without `frames` the frame arrays are empty."""
+    advanced in place to rest. Without `frames` the frame arrays are empty. The event
+    array starts at `event_capacity` rows and grows as needed."""
     return run_to_rest_kernel(
         s.positions,
         s.velocities,
@@ -156,7 +162,7 @@ def _run_kernel(
         params,
         tick,
         int(MAX_SHOT_SECONDS / tick),
-        _EVENT_CAPACITY,
+        event_capacity,
         frames,
     )
 

@@ -10,8 +10,7 @@ import numpy as np
 
 from server.engine import CUE, DEFAULT_TICK, Shot, Table, rack
 from server.engine.params import DEFAULT_PARAMS
-from server.engine.physics.tick import run_to_rest_kernel
-from server.engine.simulate import _geometry, strike
+from server.engine.simulate import _geometry, _run_kernel, strike
 
 
 def _break(event_capacity: int) -> tuple:
@@ -22,25 +21,8 @@ def _break(event_capacity: int) -> tuple:
     cx, cy = balls.position_of(CUE)
     fx, fy = table.foot_spot
     strike(balls, Shot(math.atan2(fy - cy, fx - cx), 12.0), DEFAULT_PARAMS)
-    geo = _geometry(table)
-    out = run_to_rest_kernel(
-        balls.positions,
-        balls.velocities,
-        balls.spins,
-        balls.states,
-        balls.phases,
-        balls.pockets,
-        geo.cushions,
-        geo.jaws,
-        geo.pockets,
-        geo.centers,
-        geo.length,
-        geo.width,
-        DEFAULT_PARAMS.array(),
-        DEFAULT_TICK,
-        100_000,
-        event_capacity,
-        True,
+    out = _run_kernel(
+        _geometry(table), balls, DEFAULT_TICK, DEFAULT_PARAMS.array(), True, event_capacity
     )
     return (*out, balls)
 
