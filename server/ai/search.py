@@ -16,7 +16,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from server.engine import CUE, MAX_SPEED, BallSet, Shot, Table, settle
+from server.engine import CUE, MAX_SPEED, BallSet, Settled, Shot, Table, settle
 from server.engine.results import Event
 from server.rules.kinds import GameRules
 from server.rules.position import Position
@@ -211,7 +211,8 @@ class Search:
     ) -> tuple[float, bool, Ruling, BallSet]:
         """Simulate `shot` from `before` played in `pos`: (value, pocketed legally, ruling,
         table after)."""
-        facts, stopped, _ = self._simulate(before, shot)
+        facts, result = self._simulate(before, shot)
+        stopped = result.final
         ruling, final = self._judge(pos, facts, stopped)
         return (
             self.value_of(pos, ruling, final, facts.pocketed),
@@ -220,12 +221,11 @@ class Search:
             final,
         )
 
-    def _simulate(self, before: BallSet, shot: Shot) -> tuple[ShotFacts, BallSet, list[Event]]:
-        """One engine shot, counted against the budget: (what happened, where it stopped,
-        its events)."""
+    def _simulate(self, before: BallSet, shot: Shot) -> tuple[ShotFacts, Settled]:
+        """One engine shot, counted against the budget: (its facts, the settled shot)."""
         self.sims += 1
         result = settle(self.table, before, shot)
-        return shot_facts(before, result), result.final, result.events
+        return shot_facts(before, result), result
 
     def _judge(self, pos: Position, facts: ShotFacts, final: BallSet) -> tuple[Ruling, BallSet]:
         """The rules' ruling on a simulated shot and the table after it (balls re-spotted)."""
@@ -292,7 +292,8 @@ class Search:
         safety or kick that pockets a ball legally records the ball, pocket and route
         (`Candidate.drop`), so that the turn can say it is a pot."""
         pos = self.pos_for(cand)
-        facts, stopped, events = self._simulate(balls, cand.shot)
+        facts, result = self._simulate(balls, cand.shot)
+        stopped = result.final
         ruling, final = self._judge(pos, facts, stopped)
         cand.value0 = self.value_of(pos, ruling, final, facts.pocketed)
         if cand.value0 == LOSS and cand.kind != "pot" and cand.call is not None:
@@ -304,7 +305,7 @@ class Search:
                 cand.value0 = self.value_of(pos, ruling, final, facts.pocketed)
         if cand.kind != "pot" and facts.pocketed and self._made(ruling, facts.pocketed):
             ball = facts.pocketed[0]
-            cand.drop = (ball, facts.pockets[ball], route(events, ball, facts.first_contact))
+            cand.drop = (ball, facts.pockets[ball], route(result.events, ball, facts.first_contact))
 
     def score_noisy(self, balls: BallSet, cand: Candidate) -> None:
         pos = self.pos_for(cand)

@@ -106,17 +106,41 @@ class BallSet:
             pockets=np.full(n, -1, dtype=np.int64),
         )
 
+    @classmethod
+    def of_arrays(
+        cls,
+        ids: np.ndarray,
+        positions: np.ndarray,
+        velocities: np.ndarray,
+        spins: np.ndarray,
+        states: np.ndarray,
+        phases: np.ndarray,
+        pockets: np.ndarray,
+    ) -> BallSet:
+        """A set holding these arrays as they are, unchecked: for arrays the engine made
+        from a checked set (the shapes are that set's), where checking them again only
+        costs time (a search makes thousands of sets a turn)."""
+        out = object.__new__(cls)
+        out.ids = ids
+        out.positions = positions
+        out.velocities = velocities
+        out.spins = spins
+        out.states = states
+        out.phases = phases
+        out.pockets = pockets
+        return out
+
     def copy(self) -> BallSet:
         """A copy sharing no array (its shapes are this set's, checked already)."""
-        out = object.__new__(BallSet)
-        out.ids = self.ids.copy()
-        out.positions = self.positions.copy()
-        out.velocities = self.velocities.copy()
-        out.spins = self.spins.copy()
-        out.states = self.states.copy()
-        out.phases = self.phases.copy()
-        out.pockets = self.pockets.copy()
-        return out
+        return BallSet.of_arrays(
+            self.ids.copy(),
+            self.positions.copy(),
+            self.velocities.copy(),
+            self.spins.copy(),
+            self.states.copy(),
+            self.phases.copy(),
+            self.pockets.copy(),
+        )
 
     def __len__(self) -> int:
         return len(self.ids)

@@ -11,8 +11,8 @@ from .balls import CUE, BallSet
 from .params import DEFAULT_PARAMS, PhysicsParams
 from .physics.constants import POCKETED, SPINNING, STATIONARY
 from .physics.motion import classify
-from .physics.tick import empty_events, run_tick, run_to_rest_kernel
-from .results import EVENT_CODES, Event, EventKind, FrameSequence, Settled, ShotResult
+from .physics.tick import empty_events, run_tick, run_to_rest_kernel, settle_kernel
+from .results import Event, EventKind, FrameSequence, Settled, ShotResult, events_from
 from .shot import Shot
 from .table import Table
 
@@ -69,13 +69,18 @@ def _params_array(params: PhysicsParams) -> np.ndarray:
     return values
 
 
+def _cue_row(balls: BallSet) -> int:
+    row = balls.index(CUE)
+    if balls.states[row] == POCKETED:
+        raise ValueError("the cue ball is not on the table")
+    return row
+
+
 def strike(
     balls: BallSet, shot: Shot, params: PhysicsParams = DEFAULT_PARAMS, time: float = 0.0
 ) -> Event:
     """Give the cue ball the shot's velocity and spin (in place); returns the strike event."""
-    row = balls.index(CUE)
-    if balls.states[row] == POCKETED:
-        raise ValueError("the cue ball is not on the table")
+    row = _cue_row(balls)
     (vx, vy), (wx, wy, wz) = shot.cue_ball_motion(params.radius, params.cue_mass_ratio)
     balls.velocities[row] = (vx, vy)
     balls.spins[row] = (wx, wy, wz)
@@ -83,24 +88,7 @@ def strike(
     return Event(time, _STRIKE, (CUE,), float(shot.speed))
 
 
-_KIND_NAMES = tuple(kind.value for kind in EVENT_CODES)
 _STRIKE = EventKind.STRIKE.value
-
-
-def _events_from(rows: np.ndarray, ids: np.ndarray) -> list[Event]:
-    """`Event`s from the kernel's event rows. A sustained contact can log thousands of
-    events in one shot, so this loop stays lean: the server runs it on its event loop."""
-    names, id_of = _KIND_NAMES, ids.tolist()
-    codes = rows[:, 1].astype(np.int64).tolist()
-    first = rows[:, 2].astype(np.int64).tolist()
-    second = rows[:, 3].astype(np.int64).tolist()
-    targets = rows[:, 5].astype(np.int64).tolist()
-    return [
-        Event(time, names[code], (id_of[a],) if b < 0 else (id_of[a], id_of[b]), speed, target)
-        for time, speed, code, a, b, target in zip(
-            rows[:, 0].tolist(), rows[:, 4].tolist(), codes, first, second, targets, strict=True
-        )
-    ]
 
 
 def step(
@@ -132,7 +120,7 @@ def step(
         events,
         0,
     )
-    return _events_from(events[:n_ev], balls.ids)
+    return events_from(events[:n_ev], balls.ids)
 
 
 def _run_kernel(
@@ -207,7 +195,7 @@ class ShotInMotion:
             raise RuntimeError("run() the shot first")
         positions, cels, on_table, rows, stalls, _ = self._raw
         state = self.state
-        events = self._events + _events_from(rows, state.ids)
+        events = self._events + events_from(rows, state.ids)
         _drop_residual_spin(state)
         frames = FrameSequence(self.tick, positions, cels, on_table)
         return ShotResult(state.ids.copy(), frames, events, state, int(stalls))
@@ -241,14 +229,17 @@ def settle(
     bit, in about three quarters of the time for the short shots a search tries (less is
     saved on a break, whose many events cost the same either way). `balls` is not
     modified."""
-    state = balls.copy()
-    first = strike(state, shot, params)
-    *_, rows, stalls, ticks = _run_kernel(
-        _geometry(table), state, float(tick), _params_array(params), frames=False
-    )
-    _drop_residual_spin(state)
-    events = [first, *_events_from(rows, state.ids)]
-    return Settled(events, state, ticks * float(tick), int(stalls))
+    row = _cue_row(balls)
+    (vx, vy), (wx, wy, wz) = shot.cue_ball_motion(params.radius, params.cue_mass_ratio)
+    geo, dt = _geometry(table), float(tick)
+    *arrays, rows, stalls, ticks = settle_kernel(
+        balls.positions, balls.velocities, balls.spins, balls.states, balls.phases,
+        balls.pockets, row, vx, vy, wx, wy, wz, geo.cushions, geo.jaws, geo.pockets,
+        geo.centers, geo.length, geo.width, _params_array(params), dt,
+        int(MAX_SHOT_SECONDS / dt), _EVENT_CAPACITY,
+    )  # fmt: skip
+    final = BallSet.of_arrays(balls.ids.copy(), *arrays)
+    return Settled(rows, final, ticks * dt, int(stalls), float(shot.speed))
 
 
 def run_to_rest(
@@ -263,5 +254,5 @@ def run_to_rest(
         _geometry(table), state, float(tick), _params_array(params)
     )
     if events is not None:
-        events.extend(_events_from(rows, state.ids))
+        events.extend(events_from(rows, state.ids))
     return FrameSequence(float(tick), positions, cels, on_table)

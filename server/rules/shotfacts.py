@@ -9,10 +9,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from server.engine import CUE, BallSet, EventKind, Settled, ShotResult
+from server.engine.results import EVENT_CODES
 
-RAIL_KINDS = (EventKind.CUSHION.value, EventKind.JAW.value)  # a pocket point is a rail too
-_BALL = EventKind.BALL.value  # read once: a shot's facts are read for every simulated shot
-_POCKET = EventKind.POCKET.value
+# Kind codes of `contacts()` (read once: a shot's facts are read for every simulated shot).
+_BALL, _CUSHION, _JAW, _POCKET = (
+    EVENT_CODES.index(kind)
+    for kind in (EventKind.BALL, EventKind.CUSHION, EventKind.JAW, EventKind.POCKET)
+)
 
 
 @dataclass(frozen=True)
@@ -51,21 +54,19 @@ def shot_facts(before: BallSet, result: ShotResult | Settled) -> ShotFacts:
     order: list[int] = []
     pockets: dict[int, int] = {}
     to_rail: set[int] = set()
-    for event in result.events:
-        if event.kind == _BALL:
-            if not contact_seen and CUE in event.ids:
-                others = [i for i in event.ids if i != CUE]
-                first_contact = others[0] if others else None
-                contact_seen = first_contact is not None
-        elif event.kind in RAIL_KINDS:
+    for code, ball, other, target in result.contacts():
+        if code == _BALL:
+            if not contact_seen and (ball == CUE or other == CUE):
+                first_contact = other if ball == CUE else ball
+                contact_seen = True
+        elif code in (_CUSHION, _JAW):  # a pocket's point is a rail too
             if contact_seen:
                 rail_after_contact = True
-            to_rail.update(i for i in event.ids if i != CUE)
-        elif event.kind == _POCKET:
-            for ball in event.ids:
-                if ball not in pockets:
-                    order.append(ball)
-                    pockets[ball] = event.target
+            if ball != CUE:
+                to_rail.add(ball)
+        elif code == _POCKET and ball not in pockets:
+            order.append(ball)
+            pockets[ball] = target
     was_on = set(before.on_table_ids())
     now_off = set(result.final.pocketed_ids())
     dropped = was_on & now_off

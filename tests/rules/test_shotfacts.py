@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
-from server.engine import BallSet, Shot, simulate
+import math
+from dataclasses import replace
+
+from server.engine import CUE, BallSet, Shot, Table, rack, settle, simulate
 from server.rules.shotfacts import shot_facts
 
 from .helpers import TABLE, crafted, hit, pot, rail, straight_in
@@ -38,3 +41,29 @@ def test_a_miss_has_no_contact() -> None:
     balls = BallSet.place({0: (0.5, 0.5), 1: (1.0, 1.0)})
     facts = shot_facts(balls, simulate(TABLE, balls, Shot(-1.2, 0.5)))
     assert facts.first_contact is None and facts.pocketed == ()
+
+
+def test_settled_shots_give_the_facts_of_simulated_ones() -> None:
+    """The search reads facts from `settle`'s rows (`Settled.contacts`), the room from
+    `simulate`'s events: a break (many balls, rails, pockets), a pot, a scratch and a
+    miss must read the same either way."""
+    table = Table.pool("9ft")
+    racked = rack("eight_ball", table, seed=3)
+    cx, cy = racked.position_of(CUE)
+    fx, fy = table.foot_spot
+    placement, straight = straight_in(3, pocket=0)
+    lone = BallSet.place(placement)
+    shots = [
+        (racked, Shot(math.atan2(fy - cy, fx - cx), 11.0)),
+        (lone, straight),
+        (lone, replace(straight, speed=4.0)),  # the cue ball scratches after the 3
+        (lone, Shot(straight.angle + 1.0, 1.0)),
+    ]
+    seen = set()
+    for balls, shot in shots:
+        simulated, settled = simulate(table, balls, shot), settle(table, balls, shot)
+        assert settled.contacts() == simulated.contacts()
+        facts = shot_facts(balls, settled)
+        assert facts == shot_facts(balls, simulated)
+        seen.add((bool(facts.pocketed), facts.scratch, facts.first_contact is None))
+    assert len(seen) >= 3  # the shots above do differ in what happened

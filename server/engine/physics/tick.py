@@ -29,7 +29,7 @@ from .constants import (
     STATIONARY,
 )
 from .detect import earliest_event
-from .motion import advance, finish_transition, transition_time
+from .motion import advance, classify, finish_transition, transition_time
 from .resolve import ball_ball, cushion, jaw, pocket
 
 
@@ -326,6 +326,62 @@ def run_to_rest_kernel(
         stalls,
         ticks,
     )
+
+
+@njit(cache=True, nogil=True)
+def settle_kernel(
+    pos,
+    vel,
+    w,
+    st,
+    phase,
+    pocket_of,
+    cue,
+    vx,
+    vy,
+    wx,
+    wy,
+    wz,
+    cush,
+    jaws,
+    pockets,
+    centers,
+    length,
+    width,
+    p,
+    dt,
+    max_ticks,
+    event_capacity,
+):
+    """A shot to rest without frames, from strike to final table, in one compiled call:
+    copies of the balls' arrays (the caller's stay as they are), the cue ball given the
+    strike's velocity (vx, vy) and spin (wx, wy, wz), the ticks, and the spin of a ball that
+    no longer translates dropped. The same steps in Python (copies, strike, spin) cost about
+    15 us a shot, some 5 % of a search's short shot, and a search settles thousands a turn.
+    Returns (pos, vel, w, st, phase, pocket_of, events, stalls, ticks)."""
+    pos = pos.copy()
+    vel = vel.copy()
+    w = w.copy()
+    st = st.copy()
+    phase = phase.copy()
+    pocket_of = pocket_of.copy()
+    vel[cue, 0] = vx
+    vel[cue, 1] = vy
+    w[cue, 0] = wx
+    w[cue, 1] = wy
+    w[cue, 2] = wz
+    classify(vel, w, st, cue, p[P_RADIUS])
+    _, _, _, events, stalls, ticks = run_to_rest_kernel(
+        pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width, p,
+        dt, max_ticks, event_capacity, False,
+    )  # fmt: skip
+    for i in range(st.shape[0]):
+        if st[i] == SPINNING:
+            w[i, 0] = 0.0
+            w[i, 1] = 0.0
+            w[i, 2] = 0.0
+            st[i] = STATIONARY
+    return pos, vel, w, st, phase, pocket_of, events, stalls, ticks
 
 
 @njit(cache=True, nogil=True)
