@@ -11,6 +11,7 @@ import math
 import numpy as np
 from numba import njit
 
+from .borrow import borrowed
 from .constants import (
     EPS_SPIN,
     EV_BALL,
@@ -114,13 +115,19 @@ def run_ticks(
     stopping early once no ball moves (with `until_rest`), before a tick when fewer than
     `free_rows` event rows are free, or when the frame arrays are full (the caller grows
     them and calls again; None for no frames: numba compiles that case without them).
-    The tick loop and each tick's work are in one function because every compiled call
-    with these dozen arrays, even an inlined one, costs their reference counts: per tick,
-    about half of a search's shot.
+    The tick loop and each tick's work are in one function, handing its helpers ownerless
+    views of the arrays (`borrow`), because numba reference-counts the arrays of every
+    compiled call, even an inlined one, with atomic operations: per tick, with a dozen
+    arrays, that was first about half of a search's shot, then over a third of it.
 
     Each frame is the table at the end of its tick. Returns (n_ev, stalls,
     ticks): the event rows used, the ticks that stalled (hit MAX_EVENTS_PER_TICK and
     stopped early, the balls left where they are: no overlap), the next tick's number."""
+    # Ownerless views: the helpers below are handed these on every sub-step (`borrow`).
+    pos, vel, w = borrowed(pos), borrowed(vel), borrowed(w)
+    st, phase, pocket_of = borrowed(st), borrowed(phase), borrowed(pocket_of)
+    cush, jaws, pockets = borrowed(cush), borrowed(jaws), borrowed(pockets)
+    centers, p, events = borrowed(centers), borrowed(p), borrowed(events)
     n = pos.shape[0]
     radius = p[P_RADIUS]
     stalls = 0
