@@ -161,16 +161,12 @@ class Settled:
 
     def contacts(self) -> list[tuple[int, int, int, int]]:
         """`ShotResult.contacts`, read from the rows."""
-        rows = self.rows
         id_of = [*self.final.ids.tolist(), -1]  # a missing second ball's row -1 reads -1
-        codes = rows[:, 1].astype(np.int64).tolist()
-        first = rows[:, 2].astype(np.int64).tolist()
-        second = rows[:, 3].astype(np.int64).tolist()
-        targets = rows[:, 5].astype(np.int64).tolist()
         strike = (_CODE_OF[EventKind.STRIKE.value], CUE, -1, -1)
+        # Every column as ints in one conversion (the time and speed, truncated, unread).
         return [strike] + [
             (code, id_of[a], id_of[b], target)
-            for code, a, b, target in zip(codes, first, second, targets, strict=True)
+            for _, code, a, b, _, target in self.rows.astype(np.int64).tolist()
         ]
 
 

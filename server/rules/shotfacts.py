@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from server.engine import CUE, BallSet, EventKind, Settled, ShotResult
+from server.engine.physics.constants import POCKETED
 from server.engine.results import EVENT_CODES
 
 # Kind codes of `contacts()` (read once: a shot's facts are read for every simulated shot).
@@ -43,7 +44,8 @@ class ShotFacts:
 
 
 def shot_facts(before: BallSet, result: ShotResult | Settled) -> ShotFacts:
-    """Facts of `result`, a shot played from the table `before`.
+    """Facts of `result`, a shot played from the table `before` (its final table has
+    `before`'s rows, as the engine keeps them).
 
     Events give the order and the pockets; `result.final` is the authority on which balls
     dropped (a ball off in `final` but on in `before` dropped even if no event says so).
@@ -67,14 +69,15 @@ def shot_facts(before: BallSet, result: ShotResult | Settled) -> ShotFacts:
         elif code == _POCKET and ball not in pockets:
             order.append(ball)
             pockets[ball] = target
-    was_on = set(before.on_table_ids())
-    now_off = set(result.final.pocketed_ids())
-    dropped = was_on & now_off
-    for ball in sorted(dropped - set(order)):
-        order.append(ball)
-        pockets[ball] = int(result.final.pockets[result.final.index(ball)])
-    order = [b for b in order if b in dropped]
-    pockets = {b: p for b, p in pockets.items() if b in dropped}
+    final = result.final
+    gone = (before.states != POCKETED) & (final.states == POCKETED)
+    dropped = set(final.ids[gone].tolist()) if gone.any() else set()
+    if dropped != pockets.keys():
+        for ball in sorted(dropped - set(order)):
+            order.append(ball)
+            pockets[ball] = int(final.pockets[final.index(ball)])
+        order = [b for b in order if b in dropped]
+        pockets = {b: p for b, p in pockets.items() if b in dropped}
     return ShotFacts(
         first_contact=first_contact,
         rail_after_contact=rail_after_contact,
