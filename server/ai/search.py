@@ -212,8 +212,7 @@ class Search:
         """Simulate `shot` from `before` played in `pos`: (value, pocketed legally, ruling,
         table after)."""
         facts, result = self._simulate(before, shot)
-        stopped = result.final
-        ruling, final = self._judge(pos, facts, stopped)
+        ruling, final = self._judge(pos, facts, result.final)
         return (
             self.value_of(pos, ruling, final, facts.pocketed),
             self._made(ruling, facts.pocketed),

@@ -148,3 +148,15 @@ def classify_after_slide(vel, w, st, i, radius):
     w[i, 1] = 0.0
     st[i] = SPINNING if abs(w[i, 2]) > EPS_SPIN else STATIONARY
     return True
+
+
+@njit(cache=True, inline="always")
+def drop_residual_spin(w, st):
+    """A ball that has stopped translating keeps spinning about the vertical a little
+    while, which cannot move it any more: a shot's final table drops that spin."""
+    for i in range(st.shape[0]):
+        if st[i] == SPINNING:
+            w[i, 0] = 0.0
+            w[i, 1] = 0.0
+            w[i, 2] = 0.0
+            st[i] = STATIONARY

@@ -30,7 +30,13 @@ from .constants import (
     STATIONARY,
 )
 from .detect import earliest_event
-from .motion import advance, classify, finish_transition, transition_time
+from .motion import (
+    advance,
+    classify,
+    drop_residual_spin,
+    finish_transition,
+    transition_time,
+)
 from .resolve import ball_ball, cushion, jaw, pocket
 
 
@@ -382,12 +388,7 @@ def settle_kernel(
         pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width, p,
         dt, max_ticks, event_capacity, False,
     )  # fmt: skip
-    for i in range(st.shape[0]):
-        if st[i] == SPINNING:
-            w[i, 0] = 0.0
-            w[i, 1] = 0.0
-            w[i, 2] = 0.0
-            st[i] = STATIONARY
+    drop_residual_spin(w, st)
     return pos, vel, w, st, phase, pocket_of, events, stalls, ticks
 
 
