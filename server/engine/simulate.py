@@ -129,12 +129,11 @@ def _run_kernel(
     s: BallSet,
     tick: float,
     params: np.ndarray,
-    frames: bool = True,
     event_capacity: int = _EVENT_CAPACITY,
 ) -> tuple:
     """(frame positions, cels, on-table flags, event rows, stalled ticks, ticks); `s` is
-    advanced in place to rest. Without `frames` the frame arrays are empty. The event
-    array starts at `event_capacity` rows and grows as needed."""
+    advanced in place to rest. The event array starts at `event_capacity` rows and grows
+    as needed. (`settle_kernel` runs a shot without frames.)"""
     return run_to_rest_kernel(
         s.positions,
         s.velocities,
@@ -152,7 +151,7 @@ def _run_kernel(
         tick,
         int(MAX_SHOT_SECONDS / tick),
         event_capacity,
-        frames,
+        True,
     )
 
 

@@ -21,9 +21,7 @@ def _break(event_capacity: int) -> tuple:
     cx, cy = balls.position_of(CUE)
     fx, fy = table.foot_spot
     strike(balls, Shot(math.atan2(fy - cy, fx - cx), 12.0), DEFAULT_PARAMS)
-    out = _run_kernel(
-        _geometry(table), balls, DEFAULT_TICK, DEFAULT_PARAMS.array(), True, event_capacity
-    )
+    out = _run_kernel(_geometry(table), balls, DEFAULT_TICK, DEFAULT_PARAMS.array(), event_capacity)
     return (*out, balls)
 
 
