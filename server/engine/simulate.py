@@ -10,7 +10,7 @@ import numpy as np
 from .balls import CUE, BallSet
 from .params import DEFAULT_PARAMS, PhysicsParams
 from .physics.constants import POCKETED
-from .physics.motion import classify, drop_residual_spin
+from .physics.motion import drop_residual_spin, strike_ball
 from .physics.tick import empty_events, run_tick, run_to_rest_kernel, settle_kernel
 from .results import Event, EventKind, FrameSequence, Settled, ShotResult, events_from
 from .shot import Shot
@@ -83,9 +83,7 @@ def strike(
     """Give the cue ball the shot's velocity and spin (in place); returns the strike event."""
     row = _cue_row(balls)
     (vx, vy), (wx, wy, wz) = shot.cue_ball_motion(params.radius, params.cue_mass_ratio)
-    balls.velocities[row] = (vx, vy)
-    balls.spins[row] = (wx, wy, wz)
-    classify(balls.velocities, balls.spins, balls.states, row, params.radius)
+    strike_ball(balls.velocities, balls.spins, balls.states, row, vx, vy, wx, wy, wz, params.radius)
     return Event(time, _STRIKE, (CUE,), float(shot.speed))
 
 

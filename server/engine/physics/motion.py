@@ -160,3 +160,15 @@ def drop_residual_spin(w, st):
             w[i, 1] = 0.0
             w[i, 2] = 0.0
             st[i] = STATIONARY
+
+
+@njit(cache=True, inline="always")
+def strike_ball(vel, w, st, i, vx, vy, wx, wy, wz, radius):
+    """Give ball i a strike's velocity (vx, vy) and spin (wx, wy, wz), and the motion
+    state they make."""
+    vel[i, 0] = vx
+    vel[i, 1] = vy
+    w[i, 0] = wx
+    w[i, 1] = wy
+    w[i, 2] = wz
+    classify(vel, w, st, i, radius)

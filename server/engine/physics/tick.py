@@ -32,9 +32,9 @@ from .constants import (
 from .detect import earliest_event
 from .motion import (
     advance,
-    classify,
     drop_residual_spin,
     finish_transition,
+    strike_ball,
     transition_time,
 )
 from .resolve import ball_ball, cushion, jaw, pocket
@@ -378,12 +378,7 @@ def settle_kernel(
     st = st.copy()
     phase = phase.copy()
     pocket_of = pocket_of.copy()
-    vel[cue, 0] = vx
-    vel[cue, 1] = vy
-    w[cue, 0] = wx
-    w[cue, 1] = wy
-    w[cue, 2] = wz
-    classify(vel, w, st, cue, p[P_RADIUS])
+    strike_ball(vel, w, st, cue, vx, vy, wx, wy, wz, p[P_RADIUS])
     _, _, _, events, stalls, ticks = run_to_rest_kernel(
         pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width, p,
         dt, max_ticks, event_capacity, False,
