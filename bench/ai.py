@@ -277,6 +277,8 @@ class Counts:
     # Per pot tried: the chance its plan gave it (`Turn.chance`) and whether it dropped.
     chances: dict[str, list[tuple[float, bool]]] = field(default_factory=dict)
     ends: dict[str, int] = field(default_factory=dict)  # runouts: how each lost rack ended
+    # Runouts: the balls the lost rack's last shot had left to pot, the 8 counted.
+    left: dict[str, int] = field(default_factory=dict)
 
     def add(self, other: Counts) -> None:
         self.games += other.games
@@ -289,6 +291,7 @@ class Counts:
             "breaks",
             "breaks_kept",
             "ends",
+            "left",
         ):
             mine, theirs = getattr(self, name), getattr(other, name)
             for k, v in theirs.items():
@@ -405,6 +408,7 @@ def runout(
     bot = Bot(top, seed)
     counts = Counts(games=1)
     for _ in range(40):
+        left = balls_to_pot(game, 1)
         t0, c0 = time.perf_counter(), time.process_time()
         plan = bot.plan(game, 1)
         counts.times.setdefault(top, []).append(time.perf_counter() - t0)
@@ -416,9 +420,19 @@ def runout(
             return True, counts
         if game.over or game.turn != 1 or game.decision is not None:
             counts.bump("ends", end_of_rack(plan, outcome, game.over))
+            counts.bump("left", str(left))
             return False, counts
     counts.bump("ends", "out of turns")
     return False, counts
+
+
+def balls_to_pot(game: Game, seat: int) -> int:
+    """The balls `seat` has left to pot, the 8 counted: its group's and the 8 once the
+    groups are chosen, every object ball on an open table."""
+    groups = game.balls_left()
+    if groups is None:
+        return sum(1 for b in game.balls.on_table_ids() if b != CUE)
+    return len(groups[seat]) + 1
 
 
 def made_pot(outcome: Outcome) -> bool:
@@ -827,6 +841,11 @@ def main(argv: list[str] | None = None) -> int:
         report_chances(total, LEVELS[-1])
         ends = sorted(total.ends.items(), key=lambda kv: -kv[1])
         print("  racks not cleared: " + (", ".join(f"{n} {why}" for why, n in ends) or "none"))
+        left = sorted(total.left.items(), key=lambda kv: int(kv[0]))
+        print(
+            "  racks not cleared, by the balls left to pot (the 8 counted): "
+            + (", ".join(f"{n} with {k}" for k, n in left) or "none")
+        )
     if "greedy" in parts:
         print("against the greedy baseline (8-ball, alternating breaks):")
         won = match(

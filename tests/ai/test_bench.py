@@ -16,6 +16,7 @@ from bench.ai import (
     Arm,
     Counts,
     _map,
+    balls_to_pot,
     end_of_rack,
     log_loss,
     main,
@@ -71,6 +72,12 @@ def test_a_saved_run_replays_seed_for_seed_and_the_report_counts_differences(
     assert ends is not None, report
     counted = [int(part.split()[0]) for part in ends[1].split(", ") if part != "none"]
     assert sum(counted) == 2 - sum(saved["runouts"].values())
+    # And to the balls it had left to pot.
+    left = re.search(r"racks not cleared, by the balls left to pot \(the 8 counted\): (.*)", report)
+    assert left is not None, report
+    by_left = [part.split(" with ") for part in left[1].split(", ") if part != "none"]
+    assert sum(int(n) for n, _ in by_left) == sum(counted)
+    assert all(1 <= int(k) <= 15 for _, k in by_left)
     assert "pots made by the chance planned" in report
 
 
@@ -264,3 +271,9 @@ def test_the_runouts_start_on_the_table_asked_for_with_ball_in_hand_on_an_open_t
         for ball in on_table:
             x, y = game.balls.positions[game.balls.index(ball)]
             assert 0.0 < x < length and 0.0 < y < width, (size, ball, x, y)
+        # On the open table every object ball is still to pot; once the groups are
+        # chosen, the seat's group and the 8.
+        assert balls_to_pot(game, 1) == len(on_table) - 1
+        game.groups = ("solids", "stripes")
+        solids = [b for b in on_table if 1 <= b <= 7]
+        assert balls_to_pot(game, 0) == len(solids) + 1
