@@ -423,6 +423,7 @@ def runout(
             counts.bump("left", str(left))
             return False, counts
     counts.bump("ends", "out of turns")
+    counts.bump("left", str(balls_to_pot(game, 1)))
     return False, counts
 
 
