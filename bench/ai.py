@@ -423,7 +423,7 @@ def runout(
             counts.bump("left", str(left))
             return False, counts
     counts.bump("ends", "out of turns")
-    counts.bump("left", str(balls_to_pot(game, 1)))
+    counts.bump("left", str(left))  # what the last shot had left, as for the others
     return False, counts
 
 
