@@ -46,7 +46,8 @@ import httpx
 import redis
 import websockets
 
-from bench.load import action, action_place, cpu_seconds, free_port, start_server
+from bench.load import action, action_place, cpu_seconds, start_server
+from tests.support.ports import free_port
 
 SETTINGS = {
     "POOL_MAX_ROOMS_PER_CLIENT": "100000",

@@ -37,9 +37,10 @@ import httpx
 from websockets.asyncio.client import connect
 from websockets.exceptions import ConnectionClosed, InvalidStatus
 
-from bench.load import free_port, parse_motion, percentile, start_server, wait_healthy
+from bench.load import parse_motion, percentile, start_server, wait_healthy
 from server.config import Settings
 from server.priority import run_when_idle
+from tests.support.ports import free_port
 
 DEFAULTS = Settings()  # the server's default limits (not read from this environment)
 # The server shows each shot this many times faster than real time (`POOL_PACE`): more shots

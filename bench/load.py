@@ -48,7 +48,6 @@ import os
 import random
 import resource
 import signal
-import socket
 import statistics
 import struct
 import subprocess
@@ -64,6 +63,7 @@ import websockets
 from websockets.asyncio.client import ClientConnection
 
 from server.priority import process_stat
+from tests.support.ports import free_port
 
 TICK_HZ = 120
 HEAD_STRING = 0.635
@@ -112,12 +112,6 @@ def percentile(values: list[float], p: float) -> float:
 
 
 # ---- the server --------------------------------------------------------------------------
-
-
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return sock.getsockname()[1]
 
 
 def start_server(

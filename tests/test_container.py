@@ -21,7 +21,6 @@ import re
 import shlex
 import shutil
 import signal
-import socket
 import sqlite3
 import stat
 import subprocess
@@ -35,6 +34,8 @@ from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 
 import pytest
+
+from tests.support.ports import free_port
 
 REPO = Path(__file__).resolve().parent.parent
 STARTUP_TIMEOUT = 90.0  # a cold numba compile of every kernel takes ~25 s on 2 idle cores
@@ -287,12 +288,6 @@ def choose_runner(sandbox: Sandbox, env: dict[str, str]) -> Runner:
         {},
         "nobody (+CAP_DAC_READ_SEARCH, to read this python)",
     )
-
-
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return sock.getsockname()[1]
 
 
 def http(method: str, url: str, body: dict | None = None) -> tuple[int, bytes]:

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import httpx
 
-from tests.support.redis import free_port
+from tests.support.ports import free_port
 from tests.support.waiting import until
 
 # Every clock short, the per-client limits off (one test address plays every seat).

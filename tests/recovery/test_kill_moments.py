@@ -19,7 +19,8 @@ import pytest
 import websockets
 
 from tests.support.games import BREAK_MESSAGE
-from tests.support.live import free_port, ws_url
+from tests.support.live import ws_url
+from tests.support.ports import free_port
 from tests.support.process import server_process
 from tests.support.rooms import seated_room
 

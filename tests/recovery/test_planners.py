@@ -15,7 +15,8 @@ from websockets.sync.client import connect
 
 from server.rooms.computer import PARENT_CHECK
 from tests.support.games import BREAK_MESSAGE
-from tests.support.live import free_port, ws_url
+from tests.support.live import ws_url
+from tests.support.ports import free_port
 from tests.support.process import server_process
 from tests.support.waiting import until
 

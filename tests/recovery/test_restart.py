@@ -27,7 +27,6 @@ from tests.support.games import (
     shoot_message,
 )
 from tests.support.live import (
-    free_port,
     greet,
     http,
     live_server,
@@ -38,6 +37,7 @@ from tests.support.live import (
     ws_url,
 )
 from tests.support.messages import shot_payload
+from tests.support.ports import free_port
 from tests.support.rooms import seated_room
 
 pytestmark = pytest.mark.timeout(150)

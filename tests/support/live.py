@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import asyncio
 import json
-import socket
 from contextlib import AbstractContextManager
 from typing import Any
 
@@ -16,12 +15,6 @@ from server.embedded import bound_socket, serving
 from .games import EIGHT_BALL
 from .messages import decoded
 from .rooms import app_with
-
-
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return sock.getsockname()[1]
 
 
 def live_server(

@@ -19,13 +19,14 @@ import contextlib
 import itertools
 import os
 import shutil
-import socket
 import subprocess
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+
+from .ports import free_port
 
 USER = "postgres"
 
@@ -42,12 +43,6 @@ def binaries() -> Path:
     if found is None:
         raise RuntimeError("PostgreSQL is not installed (scripts/test installs it)")
     return Path(found).parent
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
 
 
 class PostgresServer:

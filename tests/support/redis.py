@@ -16,13 +16,9 @@ from pathlib import Path
 
 import pytest
 
+from .ports import free_port
+
 REDIS_SERVER = "redis-server"
-
-
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return int(sock.getsockname()[1])
 
 
 class RedisServer:
