@@ -35,6 +35,7 @@ from server.ai import Bot, Turn, play_turn
 from server.ai.aiming import aimed, strike_gain
 from server.ai.bot import BREAKS, BreakStroke
 from server.ai.geometry import ChanceModel
+from server.ai.search import TIPS
 from server.engine import BALL_RADIUS, Shot
 from server.rules import ANYWHERE, Foul, Game, Outcome
 
@@ -277,3 +278,20 @@ def test_the_runouts_start_on_the_table_asked_for_with_ball_in_hand_on_an_open_t
         game.groups = ("solids", "stripes")
         solids = [b for b in on_table if 1 <= b <= 7]
         assert balls_to_pot(game, 0) == len(solids) + 1
+
+
+def test_the_stroke_benchmark_finds_a_soft_draw_arrives_too_slow(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    """Struck at the same speed, a draw slides all the way to its ball and a follow
+    hardly slides: the soft draws drop far less often than the soft follows."""
+    from bench.strokes import FACTORS, main, pot_rates
+
+    rates = pot_rates(30, 5)
+    assert set(rates) == {(f, tip) for f in FACTORS for tip in TIPS}
+    assert all(0.0 <= rate <= 1.0 for rate in rates.values())
+    slowest = FACTORS[0]
+    assert rates[slowest, (0.0, -0.35)] + 0.3 < rates[slowest, (0.0, 0.35)], rates
+    main(["--pots", "3", "--seed", "1"])
+    report = capsys.readouterr().out
+    assert "3 random pots" in report and report.count("%") >= len(FACTORS) * len(TIPS)
