@@ -527,9 +527,10 @@ def pot_rates(configs: int, seed: int) -> np.ndarray:
     times the speed that just reaches, aimed for the throw as the computer aims, at the
     middle of the pocket's window when the level aims so): rows of (d1, d2, cut, side
     pocket, cos of the approach to the mouth, measured rate)."""
+    from bench.strokes import drops
     from server.ai.aiming import aim_for_throw, aimed, perturb, pocket_window
     from server.ai.geometry import pockets_of
-    from server.engine import BallSet, Table, simulate
+    from server.engine import BallSet, Table
 
     table = Table.pool("9ft")
     r = table.ball_radius
@@ -556,13 +557,7 @@ def pot_rates(configs: int, seed: int) -> np.ndarray:
         made = 0
         for _ in range(CALIBRATE_TRIALS):
             draws = rng.standard_normal(4)
-            final = simulate(table, balls, perturb(shot, draws, level, squirt=True)).final
-            row = final.index(1)
-            made += bool(
-                not final.on_table[row]
-                and int(final.pockets[row]) == o.pocket
-                and final.on_table[final.index(CUE)]
-            )
+            made += drops(table, balls, perturb(shot, draws, level, squirt=True), o.pocket)
         ux, uy = pk.aims[o.pocket][0] - ox, pk.aims[o.pocket][1] - oy
         cos_in = (ux * pk.outward[o.pocket][0] + uy * pk.outward[o.pocket][1]) / math.hypot(ux, uy)
         rows.append((o.d1, o.d2, o.cut, pk.side[o.pocket], cos_in, made / CALIBRATE_TRIALS))
