@@ -527,27 +527,19 @@ def pot_rates(configs: int, seed: int) -> np.ndarray:
     times the speed that just reaches, aimed for the throw as the computer aims, at the
     middle of the pocket's window when the level aims so): rows of (d1, d2, cut, side
     pocket, cos of the approach to the mouth, measured rate)."""
-    from bench.strokes import drops
+    from bench.strokes import drops, random_pot
     from server.ai.aiming import aim_for_throw, aimed, perturb, pocket_window
     from server.ai.geometry import pockets_of
-    from server.engine import BallSet, Table
+    from server.engine import Table
 
     table = Table.pool("9ft")
-    r = table.ball_radius
     level = Bot(LEVELS[-1]).level
     pk = pockets_of(table)
     rng = np.random.default_rng(seed)
     rows: list[tuple[float, ...]] = []
     while len(rows) < configs:
-        ox, oy = rng.uniform(2 * r, table.length - 2 * r), rng.uniform(2 * r, table.width - 2 * r)
-        cx, cy = rng.uniform(2 * r, table.length - 2 * r), rng.uniform(2 * r, table.width - 2 * r)
-        if math.dist((ox, oy), (cx, cy)) < 3 * r:
-            continue
-        balls = BallSet.place({CUE: (cx, cy), 1: (ox, oy)})
-        options = pot_options(table, balls, [1], level.aim)
-        if not options:
-            continue
-        o = options[int(rng.integers(len(options)))]
+        balls, o = random_pot(table, rng, level.aim)
+        ox, oy = balls.position_of(1)
         factor = (1.8, 2.4)[int(rng.integers(2))]
         shot = aimed(o.angle, min(speed_for(o) * factor, 0.85 * 12.0), 0.0, 0.0)
         window = None

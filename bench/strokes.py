@@ -23,19 +23,24 @@ import numpy as np
 
 from server.ai import LEVELS, Bot
 from server.ai.aiming import aim_for_throw, aimed, perturb, pocket_window
-from server.ai.geometry import ChanceModel, PotOption, pot_options, speed_for
+from server.ai.geometry import GEOMETRIC, ChanceModel, PotOption, pot_options, speed_for
 from server.ai.search import LATE_SPEED_FACTORS, SPEED_FACTORS, TIPS
 from server.engine import CUE, MAX_SPEED, BallSet, Shot, Table, simulate
 
 TRIALS = 20  # noisy strokes per stroke and pot
+LIKELY = 0.5  # the pots measured: those the pro's chance model calls this likely or more
 FACTORS = tuple(sorted({*SPEED_FACTORS, *LATE_SPEED_FACTORS}))
 
 
 def random_pot(
-    table: Table, rng: np.random.Generator, aim: float, model: ChanceModel
+    table: Table,
+    rng: np.random.Generator,
+    aim: float,
+    model: ChanceModel = GEOMETRIC,
+    least: float = 0.0,
 ) -> tuple[BallSet, PotOption]:
     """A cue ball and ball 1 anywhere, at least 1.5 diameters apart, and one of the pots
-    of ball 1 the chance model calls 50 % or more: (balls, option)."""
+    of ball 1 that `model` gives a chance of `least` or more: (balls, option)."""
     r = table.ball_radius
     while True:
         obj = (rng.uniform(2 * r, table.length - 2 * r), rng.uniform(2 * r, table.width - 2 * r))
@@ -43,7 +48,7 @@ def random_pot(
         if math.dist(obj, cue) < 3 * r:
             continue
         balls = BallSet.place({CUE: cue, 1: obj})
-        options = [o for o in pot_options(table, balls, [1], aim, model=model) if o.chance >= 0.5]
+        options = [o for o in pot_options(table, balls, [1], aim, model=model) if o.chance >= least]
         if options:
             return balls, options[int(rng.integers(len(options)))]
 
@@ -67,7 +72,7 @@ def pot_rates(pots: int, seed: int) -> dict[tuple[float, tuple[float, float]], f
     rng = np.random.default_rng(seed)
     made = {(f, tip): 0 for f in FACTORS for tip in TIPS}
     for _ in range(pots):
-        balls, option = random_pot(table, rng, level.aim, level.chance_model)
+        balls, option = random_pot(table, rng, level.aim, level.chance_model, LIKELY)
         draws = rng.standard_normal((TRIALS, 4))
         window = functools.partial(pocket_window, table, balls, 1, option.pocket)
         for factor in FACTORS:
