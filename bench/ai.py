@@ -396,11 +396,15 @@ def runout_position(seed: int, rng: np.random.Generator, table: str = "9ft") -> 
 
 
 def runout(
-    seed: int, noise: tuple[str, ...] = FULL_NOISE, table: str = "9ft"
+    seed: int,
+    noise: tuple[str, ...] = FULL_NOISE,
+    table: str = "9ft",
+    kept: Callable[[Game], None] | None = None,
 ) -> tuple[bool, Counts]:
     """After a break (the top level's, with noise), the top level gets ball in hand on an
     open 8-ball table (`runout_position`): does it clear the table and win without leaving
-    it? Its strokes are played with the parts `noise` of its execution error."""
+    it? Its strokes are played with the parts `noise` of its execution error. `kept` is
+    shown the game after each stroke that keeps the table (`bench.leaves`)."""
     top = LEVELS[-1]
     arm = Arm(BY_NAME[top], noise)
     rng = np.random.default_rng(seed + 999)
@@ -422,6 +426,8 @@ def runout(
             counts.bump("ends", end_of_rack(plan, outcome, game.over))
             counts.bump("left", str(left))
             return False, counts
+        if kept is not None:
+            kept(game)
     counts.bump("ends", "out of turns")
     counts.bump("left", str(left))  # what the last shot had left, as for the others
     return False, counts

@@ -295,3 +295,38 @@ def test_the_stroke_benchmark_finds_a_soft_draw_arrives_too_slow(
     main(["--pots", "3", "--seed", "1"])
     report = capsys.readouterr().out
     assert "3 random pots" in report and report.count("%") >= len(FACTORS) * len(TIPS)
+
+
+def test_the_leaves_fit_finds_the_weights_the_outcomes_came_from() -> None:
+    from bench.leaves import logistic_fit
+
+    rng = np.random.default_rng(4)
+    x = rng.uniform(0.0, 1.0, (20000, 2))
+    truth = np.array([-1.5, 3.0, 1.0])
+    p = 1.0 / (1.0 + np.exp(-(truth[0] + x @ truth[1:])))
+    y = (rng.uniform(size=len(p)) < p).astype(float)
+    assert np.allclose(logistic_fit(x, y), truth, atol=0.15)
+
+
+def test_the_leaves_benchmark_counts_each_table_the_runout_kept(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    """Each kept table of a runout is described as the search sees it and carries the
+    rack's outcome; the report's table counts every one of them."""
+    from bench.ai import runout
+    from bench.leaves import kept_tables
+    from bench.leaves import main as leaves_main
+
+    kept = kept_tables(3)
+    cleared, _ = runout(3)
+    assert kept, "the runout of rack 3 keeps the table at least once"
+    assert all(k.seed == 3 and k.cleared == cleared for k in kept)
+    assert all(1 <= k.left <= 15 and 0.0 <= k.q <= 1.0 and 0.0 <= k.open <= 1.0 for k in kept)
+    lefts = [k.left for k in kept]
+    assert lefts == sorted(lefts, reverse=True) and len(set(lefts)) == len(lefts)  # a ball a pot
+    leaves_main(["--racks", "1", "--seed", "3"])
+    report = capsys.readouterr().out
+    assert f"kept tables: {len(kept)};" in report
+    cells = re.findall(r"(\d+): +\d+ %", report)
+    assert sum(int(c) for c in cells) == len(kept)
+    assert "the search's quality" in report
