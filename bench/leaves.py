@@ -60,7 +60,7 @@ def kept_tables(seed: int) -> list[Kept]:
     return [Kept(seed, left, q, spread, cleared) for left, q, spread in seen]
 
 
-def logistic_fit(x: np.ndarray, y: np.ndarray, ridge: float = 1e-3) -> np.ndarray:
+def logistic_fit(x: np.ndarray, y: np.ndarray, ridge: float = 0.1) -> np.ndarray:
     """The weights (intercept first) of a logistic regression of `y` (0 or 1) on the columns
     of `x`, by Newton's method; `ridge` keeps a column that separates the data finite."""
     design = np.column_stack([np.ones(len(y)), x])
@@ -86,8 +86,8 @@ def held_out_loss(x: np.ndarray, y: np.ndarray, odd: np.ndarray) -> float:
     """Log-loss per table of a fit on one half of the racks, scored on the other, both ways."""
     if odd.all() or not odd.any():
         return float("nan")
-    a = log_loss(x[~odd], y[~odd], logistic_fit(x[odd], y[odd], 0.1))
-    b = log_loss(x[odd], y[odd], logistic_fit(x[~odd], y[~odd], 0.1))
+    a = log_loss(x[~odd], y[~odd], logistic_fit(x[odd], y[odd]))
+    b = log_loss(x[odd], y[odd], logistic_fit(x[~odd], y[~odd]))
     return (a + b) / 2
 
 
@@ -129,7 +129,7 @@ def report(kept: list[Kept]) -> None:
     print("scored on even ones', and the other way round; weights fitted on all):")
     odd = np.array([k.seed % 2 == 1 for k in kept])
     for name, x in models(kept).items():
-        weights = " ".join(f"{w:+.2f}" for w in logistic_fit(x, cleared, 0.1)) if kept else ""
+        weights = " ".join(f"{w:+.2f}" for w in logistic_fit(x, cleared)) if kept else ""
         print(f"  {name:42s} {held_out_loss(x, cleared, odd):.4f}   weights {weights}")
 
 
