@@ -21,14 +21,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from bench.ai import _map, balls_to_pot, runout
-from server.ai.geometry import best_chance, open_share
+from server.ai.geometry import open_share
 from server.ai.levels import BY_NAME, LEVELS
-from server.ai.search import OPEN_WEIGHT
+from server.ai.search import OPEN_WEIGHT, Search
 from server.rules import Game
 
 BANDS = (0.0, 0.5, 0.8, 0.95, 1.01)  # of the best next pot's chance
 LEFT_ROWS = ((1, 1), (2, 2), (3, 3), (4, 5), (6, 15))  # balls left to pot, the 8 counted
 LEFT_CLASSES = ((1, 2), (3, 3), (4, 15))  # the weights of the last fit, by balls left
+NO_DRAWS = np.zeros((0, 4))  # the search only values tables here: it simulates nothing
 
 
 @dataclass(frozen=True)
@@ -52,9 +53,10 @@ def kept_tables(seed: int) -> list[Kept]:
 
     def look(game: Game) -> None:
         pos = game.position()
-        targets = game.rules.legal_targets(pos) or pos.object_balls
-        q = best_chance(game.table, game.balls, targets, level.aim)  # as `Search.chance_for`
-        seen.append((balls_to_pot(game, 1), q, open_share(game.table, game.balls, targets)))
+        search = Search(game.table, game.rules, pos, 1, level, NO_DRAWS, NO_DRAWS)
+        q = search.chance_for(pos, game.balls)
+        spread = open_share(game.table, game.balls, search.targets(pos))
+        seen.append((balls_to_pot(game, 1), q, spread))
 
     cleared, _ = runout(seed, kept=look)
     return [Kept(seed, left, q, spread, cleared) for left, q, spread in seen]
