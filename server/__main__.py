@@ -7,8 +7,10 @@ before it exits."""
 from __future__ import annotations
 
 import argparse
+import faulthandler
 import gc
 import logging
+import signal
 from typing import Any
 
 import uvicorn
@@ -40,6 +42,7 @@ def uvicorn_config(
         workers=1,
         proxy_headers=False,
         http=HttpProtocol,
+        timeout_graceful_shutdown=settings.shutdown_wait,
         **extra,
     )
     logs.install()  # after uvicorn configured its loggers
@@ -61,6 +64,8 @@ def main(argv: list[str] | None = None) -> None:
         create_app(settings), args.host, args.port, settings, log_level=args.log_level
     )
     warm_up(settings.frame_every)
+    # `kill -USR1 <pid>` prints every thread's stack to stderr: what a stuck process is doing.
+    faulthandler.register(signal.SIGUSR1, all_threads=True)
     # Everything loaded so far (numba, numpy, pydantic, the app) lives as long as the
     # process: keep it out of the cyclic collector, whose full passes over it stalled every
     # room's stream for up to ~200 ms under load (docs/performance.md).

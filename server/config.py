@@ -107,6 +107,10 @@ class Settings(BaseSettings):
     send_queue: Annotated[int, Field(ge=4, le=100_000)] = 64  # messages waiting for a client
     # A client that cannot take what is queued for this long is dropped.
     send_timeout: PositiveSeconds = 5.0
+    # On SIGTERM, how long uvicorn waits for open connections and their handlers to end
+    # before it cancels them and runs the shutdown that hands the rooms over: a stuck
+    # handler must not keep a deploy from draining (a stop is killed ~30 s after SIGTERM).
+    shutdown_wait: Annotated[int, Field(ge=1, le=600)] = 10  # s (uvicorn takes whole seconds)
     rate_burst: Annotated[float, Field(ge=1.0, le=10_000.0)] = 40.0  # token bucket per socket
     rate_per_second: Annotated[float, Field(gt=0.0, le=10_000.0)] = 20.0
     # A spectator only chats and asks for a `sync`: a smaller budget, so a crowd sending as

@@ -3,6 +3,7 @@ environment, waited for, stopped, killed, paused and resumed by pid."""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 import subprocess
@@ -57,9 +58,20 @@ class Server:
         self.stopped = True
 
     def terminate(self, timeout: float = 30.0) -> int:
-        """SIGTERM (what a deploy sends), waits for the exit; returns the exit code."""
+        """SIGTERM (what a deploy sends), waits for the exit; returns the exit code. A
+        process still running after `timeout` fails the test with its log and the stacks
+        of its threads (SIGUSR1), then is killed."""
         self.proc.send_signal(signal.SIGTERM)
-        code = self.proc.wait(timeout)
+        try:
+            code = self.proc.wait(timeout)
+        except subprocess.TimeoutExpired:
+            self.proc.send_signal(signal.SIGUSR1)
+            with contextlib.suppress(AssertionError):
+                self.wait_for_output("most recent call first", within=5.0)
+            self.kill()
+            raise AssertionError(
+                f"still running {timeout} s after SIGTERM:\n{self.output()[-6000:]}"
+            ) from None
         self.stopped = True
         return code
 

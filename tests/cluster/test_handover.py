@@ -9,6 +9,7 @@ down and his shot pockets a ball on a foul)."""
 from __future__ import annotations
 
 import asyncio
+import signal
 import time
 
 import pytest
@@ -98,3 +99,15 @@ def test_a_paused_owner_is_refused_when_it_wakes(servers) -> None:
         assert [(s["shot_id"], s["seat"]) for s in shots] == [(1, 0), (2, 1)]
     finally:
         loop.close()
+
+
+def test_sigusr1_prints_the_stacks_and_the_process_plays_on(servers) -> None:
+    # what `Server.terminate` collects from a process that does not stop
+    group: ServerSet = servers(1, store="sqlite")
+    server = group.all[0]
+    server.proc.send_signal(signal.SIGUSR1)
+    # every thread's stack, the event loop's among them (in uvicorn's `Server.run`)
+    server.wait_for_output("(most recent call first):", "uvicorn/server.py", within=10.0)
+    with server.http() as client:
+        assert client.get("/health").status_code == 200
+    assert server.terminate() in (0, -signal.SIGTERM)
