@@ -32,6 +32,10 @@ the cue's (docs/ai-rounds.md, "Cue-speed round"). It says what the racks are los
 `--table` plays every rack and game on an 8ft or 7ft table instead of the rooms' 9ft: the
 tournaments' FastFiz table (2.236 x 1.116 m, jawless pockets) is nearest the 8ft.
 
+`--kind nine_ball` plays the runouts, the greedy games and the ladder at 9-ball (the
+goals are 8-ball's): a runout starts with ball in hand after the pro's 9-ball break, the 9
+on the table, no push out; the greedy baseline shoots the lowest ball.
+
 `--save` writes each rack's and game's outcome by seed; `--paired` compares this run with
 such a file seed by seed. A seed gives the same rack and the same noise draws, so two
 versions of the search differ only where their play differs: the sign test on the seeds
@@ -80,6 +84,7 @@ from server.rules import ANYWHERE, Game, Outcome
 from server.rules.placement import can_place
 
 MAX_TURNS = 200  # a game longer than this is stopped and counted as a draw
+GAME_BALL = {"eight_ball": 8, "nine_ball": 9}  # the ball that wins each kind's rack
 TICK = 1.0 / TICK_HZ  # s: the stream's frame clock, the loop-lateness probe's period
 
 
@@ -328,10 +333,10 @@ CHANCE_BANDS = ((0.0, 0.5), (0.5, 0.8), (0.8, 0.9), (0.9, 1.0), (1.0, 1.0))
 SURE = 0.9  # a pot planned at least this likely that misses ends a rack as a "sure" miss
 
 
-def end_of_rack(turn: Turn, outcome: Outcome, lost: bool) -> str:
+def end_of_rack(turn: Turn, outcome: Outcome, lost: bool, game_ball: int = 8) -> str:
     """How a runout ended that did not clear the table."""
     if lost:
-        return "lost on the 8"
+        return f"lost on the {game_ball}"
     if outcome.fouls:
         return "fouled"
     if turn.kind == "pot":
@@ -374,22 +379,26 @@ def _game_job(args: tuple[str, tuple[str, str], int, int, str]) -> tuple[int | N
     return play_game(*args)
 
 
-def runout_position(seed: int, rng: np.random.Generator, table: str = "9ft") -> Game:
-    """The runouts' start: the top level breaks rack `seed` on a `table` (with
+def runout_position(
+    seed: int, rng: np.random.Generator, table: str = "9ft", kind: str = "eight_ball"
+) -> Game:
+    """The runouts' start: the top level breaks rack `seed` of `kind` on a `table` (with
     `BREAK_NOISE`, so that a seed's layout is the same whatever the parts and the version),
-    then seat 1 has ball in hand anywhere on an open 8-ball table, the 8 on it."""
+    then seat 1 has ball in hand anywhere: on an open table in 8-ball, the 8 on it; in
+    9-ball the 9 on it and no push out."""
     top = LEVELS[-1]
-    game = Game.new("eight_ball", ["breaker", top], breaker=0, seed=seed, table=Table.pool(table))
+    game = Game.new(kind, ["breaker", top], breaker=0, seed=seed, table=Table.pool(table))
     breaker = Bot(top, seed + 777)
     turn = breaker.plan(game, 0)
     play_turn(game, 0, turn, Arm(BY_NAME[top], BREAK_NOISE), rng)
     # The position the benchmark asks for: seat 1, ball in hand anywhere, open table.
     game.decision = game.pending = game.after_decision_bih = None
     game.over, game.winner, game.reason = False, None, None
-    if 8 not in game.balls.on_table_ids():
+    game_ball = GAME_BALL[kind]
+    if game_ball not in game.balls.on_table_ids():
         from server.rules.spotting import respot
 
-        game.balls = respot(game.table, game.balls, (8,))
+        game.balls = respot(game.table, game.balls, (game_ball,))
     game.breaking, game.groups, game.turn = False, None, 1
     game.ball_in_hand, game.push_out_available = ANYWHERE, False
     return game
@@ -400,15 +409,17 @@ def runout(
     noise: tuple[str, ...] = FULL_NOISE,
     table: str = "9ft",
     kept: Callable[[Game], None] | None = None,
+    kind: str = "eight_ball",
 ) -> tuple[bool, Counts]:
-    """After a break (the top level's, with noise), the top level gets ball in hand on an
-    open 8-ball table (`runout_position`): does it clear the table and win without leaving
-    it? Its strokes are played with the parts `noise` of its execution error. `kept` is
-    shown the game after each stroke that keeps the table (`bench.leaves`)."""
+    """After a break (the top level's, with noise), the top level gets ball in hand
+    (`runout_position`, an 8-ball or 9-ball rack by `kind`): does it clear the table and
+    win without leaving it? Its strokes are played with the parts `noise` of its execution
+    error. `kept` is shown the game after each stroke that keeps the table
+    (`bench.leaves`)."""
     top = LEVELS[-1]
     arm = Arm(BY_NAME[top], noise)
     rng = np.random.default_rng(seed + 999)
-    game = runout_position(seed, rng, table)
+    game = runout_position(seed, rng, table, kind)
     bot = Bot(top, seed)
     counts = Counts(games=1)
     for _ in range(40):
@@ -423,7 +434,7 @@ def runout(
         if game.over and game.winner == 1:
             return True, counts
         if game.over or game.turn != 1 or game.decision is not None:
-            counts.bump("ends", end_of_rack(plan, outcome, game.over))
+            counts.bump("ends", end_of_rack(plan, outcome, game.over, GAME_BALL[kind]))
             counts.bump("left", str(left))
             return False, counts
         if kept is not None:
@@ -434,12 +445,13 @@ def runout(
 
 
 def balls_to_pot(game: Game, seat: int) -> int:
-    """The balls `seat` has left to pot, the 8 counted: its group's and the 8 once the
-    groups are chosen, every object ball on an open table."""
+    """The balls `seat` has left to pot, the game ball counted: in 8-ball its group's and
+    the 8 once the groups are chosen, every object ball on an open table; in 9-ball every
+    object ball."""
     groups = game.balls_left()
     if groups is None:
         return sum(1 for b in game.balls.on_table_ids() if b != CUE)
-    return len(groups[seat]) + 1
+    return len(groups[seat]) + (1 if game.kind == "eight_ball" else 0)
 
 
 def made_pot(outcome: Outcome) -> bool:
@@ -764,12 +776,27 @@ def ladder_steps(text: str) -> tuple[str, ...]:
     return steps
 
 
+NAMES = {"eight_ball": "8-ball", "nine_ball": "9-ball"}
+OPENING = {"eight_ball": "open 8-ball table", "nine_ball": "9-ball rack, no push out"}
+
+
+def _key(kind: str, part: str) -> str:
+    """A part's key in `--save`'s file: 8-ball's plain (the files saved before 9-ball
+    was measured), other kinds' prefixed."""
+    return part if kind == "eight_ball" else f"{kind} {part}"
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--games", type=int, default=200, help="games per comparison")
     parser.add_argument("--runouts", type=int, default=200, help="racks for the runout test")
     parser.add_argument("--only", default="runouts,greedy,ladder")
-    parser.add_argument("--kind", default="eight_ball", help="eight_ball or nine_ball (ladder)")
+    parser.add_argument(
+        "--kind",
+        choices=sorted(GAME_BALL),
+        default="eight_ball",
+        help="the game of the runouts, the greedy games and the ladder (the goals are 8-ball's)",
+    )
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--jobs", type=int, default=1, help="worker processes")
     parser.add_argument("--rooms", type=int, default=2, help="computer seats (--only loop)")
@@ -818,16 +845,18 @@ def main(argv: list[str] | None = None) -> int:
     if "runouts" in parts:
         t0 = time.perf_counter()
         seeds = [args.seed + i for i in range(args.runouts)]
-        play = functools.partial(runout, noise=args.noise, table=args.table)
+        play = functools.partial(runout, noise=args.noise, table=args.table, kind=args.kind)
         results = _map(play, seeds, args.jobs)
         cleared = sum(ok for ok, _ in results)
-        outcomes["runouts"] = {str(s): ok for s, (ok, _) in zip(seeds, results, strict=True)}
+        outcomes[_key(args.kind, "runouts")] = {
+            str(s): ok for s, (ok, _) in zip(seeds, results, strict=True)
+        }
         total = Counts()
         for _, counts in results:
             total.add(counts)
         played = ",".join(args.noise) or "none"
         print(
-            f"runouts ({LEVELS[-1]}, ball in hand after a break, open 8-ball table; "
+            f"runouts ({LEVELS[-1]}, ball in hand after a break, {OPENING[args.kind]}; "
             f"strokes played with the error's parts: {played}):"
         )
         print(f"  cleared and won {share(cleared, len(seeds))}; {time.perf_counter() - t0:.0f} s")
@@ -837,15 +866,13 @@ def main(argv: list[str] | None = None) -> int:
         print("  racks not cleared: " + (", ".join(f"{n} {why}" for why, n in ends) or "none"))
         left = sorted(total.left.items(), key=lambda kv: int(kv[0]))
         print(
-            "  racks not cleared, by the balls left to pot (the 8 counted): "
+            f"  racks not cleared, by the balls left to pot (the {GAME_BALL[args.kind]} counted): "
             + (", ".join(f"{n} with {k}" for k, n in left) or "none")
         )
     if "greedy" in parts:
-        print("against the greedy baseline (8-ball, alternating breaks):")
-        won = match(
-            "eight_ball", LEVELS[-1], "greedy", args.games, args.seed, args.jobs, args.table
-        )
-        outcomes["greedy"] = won
+        print(f"against the greedy baseline ({NAMES[args.kind]}, alternating breaks):")
+        won = match(args.kind, LEVELS[-1], "greedy", args.games, args.seed, args.jobs, args.table)
+        outcomes[_key(args.kind, "greedy")] = won
     if "calibrate" in parts:
         calibrate(args.configs, args.seed, args.fit)
     if "loop" in parts:

@@ -280,6 +280,39 @@ def test_the_runouts_start_on_the_table_asked_for_with_ball_in_hand_on_an_open_t
         assert balls_to_pot(game, 0) == len(solids) + 1
 
 
+def test_the_nine_ball_runouts_start_with_ball_in_hand_and_the_nine_on_the_table(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """`--kind nine_ball`: the same start on a 9-ball rack (no push out after the break),
+    every object ball to pot, and the run saved under its own key."""
+    game = runout_position(3, np.random.default_rng(3 + 999), "9ft", "nine_ball")
+    assert game.kind == "nine_ball"
+    assert (game.turn, game.ball_in_hand, game.push_out_available) == (1, ANYWHERE, False)
+    on_table = game.balls.on_table_ids()
+    assert 9 in on_table and set(on_table) <= set(range(10))
+    assert balls_to_pot(game, 1) == len(on_table) - 1
+    saved = tmp_path / "nine.json"
+    main(
+        [
+            "--runouts",
+            "1",
+            "--seed",
+            "3",
+            "--only",
+            "runouts",
+            "--kind",
+            "nine_ball",
+            "--save",
+            str(saved),
+        ]
+    )
+    assert list(json.loads(saved.read_text())) == ["nine_ball runouts"]
+    report = capsys.readouterr().out
+    assert "9-ball rack, no push out" in report
+    cleared = json.loads(saved.read_text())["nine_ball runouts"]["3"]
+    assert cleared or "(the 9 counted)" in report
+
+
 def test_the_stroke_benchmark_finds_a_soft_draw_arrives_too_slow(
     capsys: pytest.CaptureFixture[str],
 ) -> None:
