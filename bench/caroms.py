@@ -1,11 +1,14 @@
-"""How well the computer's caroms are aimed: the share of exact strokes that drop on the
-geometry's aim and on the aim the engine corrects, and how often they drop under the top
-level's execution noise against the chance the geometry gave them.
+"""How well the computer's caroms and billiards are aimed: the share of exact strokes that
+drop on the geometry's aim and on the aim the engine corrects, and how often they drop under
+the top level's execution noise against the chance the geometry gave them.
 
     python -m bench.caroms --tables 200 --seed 0
+    python -m bench.caroms --tables 1000 --seed 0 --kind billiard
 
 Random tables of eleven balls; on each, the best `--routes` caroms of the balls 1-5 (as
-`indirect.carom_options` ranks them), each at the search's three carom speeds.
+`indirect.carom_options` ranks them: a ball 1-5 glances off another ball into a pocket), or
+with `--kind billiard` the best billiards (`indirect.billiard_options`: the cue ball glances
+off a ball 1-5 into another of them), each at the search's three carom speeds.
 """
 
 from __future__ import annotations
@@ -20,7 +23,7 @@ import numpy as np
 from server.ai import LEVELS, Bot
 from server.ai.aiming import aim_carom, aimed, perturb
 from server.ai.geometry import speed_for
-from server.ai.indirect import carom_options
+from server.ai.indirect import billiard_options, carom_options
 from server.ai.search import CAROM_SPEED_FACTORS
 from server.engine import MAX_SPEED, BallSet, Shot, Table, simulate
 
@@ -53,6 +56,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--tables", type=int, default=200)
     parser.add_argument("--routes", type=int, default=2, help="best caroms tried per table")
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--kind", choices=("carom", "billiard"), default="carom")
     args = parser.parse_args(argv)
     table = Table.pool("9ft")
     level = Bot(LEVELS[-1]).level
@@ -63,11 +67,16 @@ def main(argv: list[str] | None = None) -> int:
     by_chance: dict[int, list[float]] = {k: [] for k in range(len(BINS) - 1)}
     for _ in range(args.tables):
         balls = random_table(table, rng)
-        for option in carom_options(table, balls, TARGETS, level.aim)[: args.routes]:
+        if args.kind == "carom":
+            options = carom_options(table, balls, TARGETS, level.aim)
+        else:
+            options = billiard_options(table, balls, TARGETS, TARGETS, level.aim)
+        for option in options[: args.routes]:
+            first = option.carrier if args.kind == "billiard" else None
             for factor in CAROM_SPEED_FACTORS:
                 speed = min(speed_for(option) * factor, 0.85 * MAX_SPEED)
                 shot = aimed(option.angle, speed, 0.0, 0.0)
-                fixed, used = aim_carom(table, balls, shot, option.target, option.pocket)
+                fixed, used = aim_carom(table, balls, shot, option.target, option.pocket, first)
                 strokes, sims = strokes + 1, sims + used
                 raw_made += drops(table, balls, shot, option.target)
                 if not drops(table, balls, fixed, option.target):
@@ -78,7 +87,7 @@ def main(argv: list[str] | None = None) -> int:
                 )
                 by_chance[int(np.digitize(option.chance, BINS)) - 1].append(float(rate))
     print(
-        f"caroms on {args.tables} random tables (seed {args.seed}): {strokes} strokes, "
+        f"{args.kind}s on {args.tables} random tables (seed {args.seed}): {strokes} strokes, "
         f"{time.process_time() - t0:.0f} s CPU"
     )
     if not strokes:
@@ -91,7 +100,7 @@ def main(argv: list[str] | None = None) -> int:
     for k, rates in by_chance.items():
         if rates:
             print(
-                f"    chance {BINS[k]:.1f}-{min(BINS[k + 1], 1.0):.1f}: {len(rates)} caroms, "
+                f"    chance {BINS[k]:.1f}-{min(BINS[k + 1], 1.0):.1f}: {len(rates)} {args.kind}s, "
                 f"dropped {np.mean(rates):.0%}"
             )
     return 0

@@ -247,25 +247,26 @@ def leaving(table: Table, balls: BallSet, shot: Shot, target: int) -> tuple[floa
 
 
 def aim_carom(
-    table: Table, balls: BallSet, shot: Shot, target: int, pocket: int
+    table: Table, balls: BallSet, shot: Shot, target: int, pocket: int, first: int | None = None
 ) -> tuple[Shot, int]:
     """`shot` with its aim turned so that the exact stroke's carom sends `target` at the
     centre of `pocket`, and the simulations that took. After the kiss the ball bends
     forward as it rolls, by an amount that depends on the speed and the distance, and the
     kiss throws it: the geometry's aim missed most caroms without noise. A secant on
     where the ball goes after the kiss (`kiss_miss`), `CAROM_STEPS` engine shots at most;
-    speed and tip stay, and the aim that missed least is kept."""
-    first = kiss_miss(table, balls, shot, target, pocket)
-    if first is None:
+    speed and tip stay, and the aim that missed least is kept. `first`: for a billiard, the
+    ball the cue ball glances off into `target` (`kiss_miss`)."""
+    miss = kiss_miss(table, balls, shot, target, pocket, first)
+    if miss is None:
         return shot, 1
-    best, best_miss, used = shot, abs(first), 1
-    a0, m0 = shot.angle, first
+    best, best_miss, used = shot, abs(miss), 1
+    a0, m0 = shot.angle, miss
     a1 = shot.angle + CAROM_NUDGE
     for _ in range(CAROM_STEPS):
         if abs(math.remainder(a1 - shot.angle, 2 * math.pi)) > CAROM_MAX:
             break
         trial = clamp_shot(a1, shot.speed, *shot.tip)
-        m1 = kiss_miss(table, balls, trial, target, pocket)
+        m1 = kiss_miss(table, balls, trial, target, pocket, first)
         used += 1
         if m1 is None:
             break
@@ -277,18 +278,26 @@ def aim_carom(
     return best, used
 
 
-def kiss_miss(table: Table, balls: BallSet, shot: Shot, target: int, pocket: int) -> float | None:
+def kiss_miss(
+    table: Table,
+    balls: BallSet,
+    shot: Shot,
+    target: int,
+    pocket: int,
+    first: int | None = None,
+) -> float | None:
     """How far (radians, seen from where `target` kissed another ball) its path then
     misses `pocket`'s aim point: where it is when it has come as far as the pocket, or
     when it next meets anything. None when the cue ball does not hit `target` first or
-    `target` meets something else before its kiss."""
+    `target` meets something else before its kiss. With `first` (a billiard) the cue ball
+    must hit `first` first, and `target`'s kiss is the cue ball's, after that glance."""
     result = simulate(table, balls, shot)
     events = result.events
-    hit = _first_hit(events, target)
+    hit = _first_hit(events, target if first is None else first)
     if hit is None:
         return None
     mine = [e for e in events[hit + 1 :] if target in e.ids]
-    if not mine or mine[0].kind != "ball" or CUE in mine[0].ids:
+    if not mine or mine[0].kind != "ball" or (CUE in mine[0].ids) != (first is not None):
         return None
     frames = result.frames
     row = result.final.index(target)  # the rows of the frames are those of the set

@@ -101,10 +101,12 @@ class PotOption:
     estimate of the pot under the aim sigma it was computed with. d1: cue to ghost ball,
     d2: object ball to pocket (m); cut: the cut angle (radians) on the ball the cue ball
     hits. via: "direct", "bank" (d2 is then the path off the cushion), "combo" (the cue
-    ball hits `carrier`, which travels `link` to hit `target` at a cut of `link_cut`) or
+    ball hits `carrier`, which travels `link` to hit `target` at a cut of `link_cut`),
     "carom" (`target` travels `link` to glance off `carrier`, its path turning by
-    `link_cut`; d2 is then from the kiss to the pocket); `indirect`. route: the aims of one
-    bank route share it (one for each restitution the cushion may have).
+    `link_cut`; d2 is then from the kiss to the pocket) or "billiard" (the cue ball
+    glances off `carrier` at a cut of `cut` and travels `link` to hit `target` at a cut of
+    `link_cut`); `indirect`. route: the aims of one bank route share it (one for each
+    restitution the cushion may have).
     """
 
     target: int
@@ -414,16 +416,20 @@ def speed_for(option: PotOption, u_roll_g: float = 0.0981) -> float:
     The last factor is measured with the engine (the least speed that drops straight and
     cut pots): the object ball slides before it rolls, so a long one needs more than
     rolling friction alone says (x1.13 at 0.8 m, x1.3 at 1.5 m). A bank loses some of its
-    pace at the cushion; a combination's first ball must bring the second its speed, and a
-    carom's ball keeps only the share of its speed along the tangent of the kiss."""
+    pace at the cushion; a combination's first ball must bring the second its speed, a
+    carom's ball keeps only the share of its speed along the tangent of the kiss, and so
+    does a billiard's cue ball after its glance."""
     v_obj = math.sqrt(2 * u_roll_g * (option.d2 + 0.25))
     if option.via == "bank":
         v_obj /= 0.85  # the cushion takes some of it
-    if option.via in ("combo", "carom"):  # the speed the second collision needs, and the link
+    if option.via in ("combo", "carom", "billiard"):  # the second collision's speed, and the link
         v_obj = math.sqrt(
             (v_obj / max(math.cos(option.link_cut), 0.25) / 0.95) ** 2 + 2 * u_roll_g * option.link
         )
-    v_hit = v_obj / max(math.cos(option.cut), 0.25) / 0.95
+    if option.via == "billiard":  # the cue ball keeps the sine of the glance's cut
+        v_hit = v_obj / max(math.sin(option.cut), 0.25) / 0.95
+    else:
+        v_hit = v_obj / max(math.cos(option.cut), 0.25) / 0.95
     slide = 1.0 + 0.25 * max(option.d2 - 0.3, 0.0)
     return math.sqrt(v_hit * v_hit + 2 * u_roll_g * option.d1) / 0.7 * slide
 

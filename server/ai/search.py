@@ -33,7 +33,7 @@ from .geometry import (
     pot_options,
     speed_for,
 )
-from .indirect import bank_options, carom_options, combo_options
+from .indirect import bank_options, billiard_options, carom_options, combo_options
 from .levels import Level
 
 WIN, LOSS = 1.0, -1.0
@@ -78,10 +78,10 @@ KICK_SPEEDS = (1.5, 2.6, 4.0)
 KICK_OFFSETS = (-2.0, -0.8, 0.0, 0.8, 2.0)  # degrees off the mirror-image line
 SWEEP_SPEEDS = (1.6, 3.2)
 SWEEP_ANGLES = 40
-# Banks, combinations and caroms (`indirect`), for the levels that look ahead when few pots
-# are on (`FEW_POTS`): the best routes of each, and the speeds tried on each (a bank's route
-# comes with an aim per restitution).
-BANK_ROUTES, COMBOS, CAROMS = 2, 2, 2
+# Banks, combinations, caroms and billiards (`indirect`), for the levels that look ahead
+# when few pots are on (`FEW_POTS`): the best routes of each, and the speeds tried on each
+# (a bank's route comes with an aim per restitution; billiards take the caroms' speeds).
+BANK_ROUTES, COMBOS, CAROMS, BILLIARDS = 2, 2, 2, 2
 BANK_SPEED_FACTORS = (1.25, 1.8, 2.6)
 COMBO_SPEED_FACTORS = (1.25, 1.8, 3.0)
 CAROM_SPEED_FACTORS = (1.25, 1.8, 2.6)
@@ -120,10 +120,12 @@ def _object_balls(balls: BallSet) -> bytes:
 
 def route(events: list[Event], ball: int, first_contact: int | None) -> str:
     """How `ball` reached its pocket, by the shot's events (`PotOption.via`'s names):
-    "combo" when the cue ball hit another ball first, "bank" when `ball` met a cushion
-    before it dropped, "carom" when it met another object ball, else "direct"."""
+    when the cue ball hit another ball first, "billiard" if the cue ball then hit `ball`
+    and "combo" if another ball did; "bank" when `ball` met a cushion before it dropped,
+    "carom" when it met another object ball, else "direct"."""
     if first_contact != ball:
-        return "combo"
+        hit = next((e for e in events if e.kind == "ball" and ball in e.ids), None)
+        return "billiard" if hit is not None and CUE in hit.ids else "combo"
     via = "direct"
     for event in events:
         if ball not in event.ids:
@@ -147,7 +149,7 @@ class Candidate:
     target: int | None = None
     pocket: int | None = None
     prior: float = 0.0
-    via: str = "direct"  # a pot's route: "direct", "bank", "combo" or "carom" (`PotOption.via`)
+    via: str = "direct"  # a pot's route: "direct", "bank", "combo", "carom" or "billiard"
     value0: float = -math.inf
     value: float = -math.inf
     pot_rate: float = 0.0
@@ -473,11 +475,11 @@ class Search:
         return out
 
     def indirect_candidates(self, balls: BallSet, needs_call: bool) -> list[Candidate]:
-        """The best banks, combinations and caroms, a few strokes each (centre ball, and
-        follow for a combination); the simulations judge them like any pot. In 9-ball the
-        combination may drop any ball (the lowest is hit first), in 8-ball only the
-        shooter's own. A carom's aim is corrected with the engine (`aim_carom`), whose
-        simulations count against the budget."""
+        """The best banks, combinations, caroms and billiards, a few strokes each (centre
+        ball, and follow for a combination); the simulations judge them like any pot. In
+        9-ball a combination or a billiard may drop any ball (the lowest is hit first), in
+        8-ball only the shooter's own. A carom's or billiard's aim is corrected with the
+        engine (`aim_carom`), whose simulations count against the budget."""
         targets = self.targets(self.pos)
         sigma = self.plan_sigma()
         banks = bank_options(self.table, balls, targets, sigma)
@@ -491,10 +493,17 @@ class Search:
                 out.extend(_strokes(option, needs_call, BANK_SPEED_FACTORS, TIPS[:1]))
             else:
                 out.extend(_strokes(option, needs_call, COMBO_SPEED_FACTORS, TIPS[:2]))
-        for option in carom_options(self.table, balls, targets, sigma)[:CAROMS]:
+        caroms = carom_options(self.table, balls, targets, sigma)[:CAROMS]
+        billiards = billiard_options(self.table, balls, targets, objects, sigma)[:BILLIARDS]
+        for option in caroms + billiards:
             for cand in _strokes(option, needs_call, CAROM_SPEED_FACTORS, TIPS[:1]):
                 cand.shot, used = aim_carom(
-                    self.table, balls, cand.shot, option.target, option.pocket
+                    self.table,
+                    balls,
+                    cand.shot,
+                    option.target,
+                    option.pocket,
+                    option.carrier if option.via == "billiard" else None,
                 )
                 self.sims += used
                 out.append(cand)

@@ -36,7 +36,8 @@ class Hint(BaseModel):
     target: int | None  # the ball it pots (or plays at)
     pocket: int | None  # the pocket it plays for
     chance: float | None  # the share of its noisy trials that pocketed a ball legally
-    via: str | None = None  # a pot's route: "direct", "bank" (off a cushion), "combo", "carom"
+    via: str | None = None  # a pot's route: "direct", "bank" (off a cushion), "combo", "carom",
+    # "billiard" (the cue ball glances off the first ball into the one it pots)
 
 
 async def hint_for(live: LiveRoom, token: str, workers: int, starved: float) -> dict[str, Any]:

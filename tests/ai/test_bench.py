@@ -109,6 +109,22 @@ def test_the_carom_benchmark_finds_the_engine_corrected_aims_drop_more(
     assert strokes is not None and int(strokes[1]) > 30
 
 
+def test_the_carom_benchmark_measures_billiards_and_their_corrected_aims_drop_more(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    from bench.caroms import main as caroms
+
+    caroms(["--tables", "150", "--seed", "0", "--kind", "billiard"])
+    report = capsys.readouterr().out
+    assert report.startswith("billiards on 150 random tables"), report
+    match = re.search(r"geometry's aim (\d+)%, corrected (\d+)%", report)
+    assert match is not None, report
+    raw, corrected = int(match.group(1)), int(match.group(2))
+    assert corrected > raw + 20  # the cue ball's bend after the glance, found by the engine
+    strokes = re.search(r"(\d+) strokes", report)
+    assert strokes is not None and int(strokes[1]) > 30
+
+
 def _kernels_compiled(_: int) -> bool:
     from server.ai import geometry
 

@@ -1,5 +1,5 @@
-"""Banks, combinations and caroms: found by geometry, judged by the engine, played when
-nothing goes straight in (or when a combination wins the game)."""
+"""Banks, combinations, caroms and billiards: found by geometry, judged by the engine,
+played when nothing goes straight in (or when a combination or a billiard wins the game)."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ import numpy as np
 from server.ai import Bot, play_turn
 from server.ai.aiming import aim_carom, aimed, kiss_miss
 from server.ai.geometry import pot_options, speed_for
-from server.ai.indirect import bank_options, carom_options, combo_options
+from server.ai.indirect import bank_options, billiard_options, carom_options, combo_options
 from server.ai.levels import BY_NAME
 from server.ai.search import Search, route
 from server.engine import simulate
@@ -171,3 +171,52 @@ def test_with_only_a_carom_on_the_pro_plays_it_and_the_exact_stroke_drops(eight:
     outcome, _ = play_turn(game, 0, turn)
     assert outcome is not None and 1 in outcome.pocketed and outcome.continues
     assert not outcome.fouls
+
+
+# 9-ball: the 1 near the bottom right pocket (2) with no pot from the cue ball, the 9 a
+# ball's width off it; the cue ball can glance off the 1 into the 9 and drop it.
+BILLIARD_TABLE = {0: (0.891, 0.93), 1: (1.89, 0.183), 9: (2.039, 0.2)}
+
+
+def test_a_billiard_route_is_found_and_a_ball_on_its_way_shuts_it() -> None:
+    game = set_table(Game.new("nine_ball", ["ana", "bot"], seed=1), BILLIARD_TABLE)
+    assert not pot_options(TABLE, game.balls, [1], SIGMA)
+    options = billiard_options(TABLE, game.balls, [1], [9], SIGMA)
+    assert options and options[0].via == "billiard"
+    assert (options[0].target, options[0].carrier, options[0].pocket) == (9, 1, 2)
+    # A ball on the cue ball's way from the cue to the 1 shuts it.
+    (cx, cy), (ox, oy) = BILLIARD_TABLE[0], BILLIARD_TABLE[1]
+    blocker = {**BILLIARD_TABLE, 5: ((cx + ox) / 2, (cy + oy) / 2)}
+    blocked = set_table(Game.new("nine_ball", ["ana", "bot"], seed=1), blocker)
+    assert not billiard_options(TABLE, blocked.balls, [1], [9], SIGMA)
+
+
+def test_the_engine_corrects_a_billiards_aim() -> None:
+    """The cue ball bends as it rolls after the glance, and the glance throws it: the
+    geometry's aim sends the 9 over a degree off the pocket's centre, the engine-corrected
+    one within a tenth of that."""
+    game = set_table(Game.new("nine_ball", ["ana", "bot"], seed=1), BILLIARD_TABLE)
+    option = billiard_options(TABLE, game.balls, [1], [9], SIGMA)[0]
+    shot = aimed(option.angle, 1.8 * speed_for(option), 0.0, 0.0)
+    before = kiss_miss(TABLE, game.balls, shot, 9, option.pocket, first=1)
+    corrected, used = aim_carom(TABLE, game.balls, shot, 9, option.pocket, first=1)
+    after = kiss_miss(TABLE, game.balls, corrected, 9, option.pocket, first=1)
+    assert before is not None and after is not None and 2 <= used <= 5
+    assert abs(before) > math.radians(1.0) and abs(after) < 0.1 * abs(before)
+    # Measured as a carom (the 9 struck first), the same stroke is no carom at all.
+    assert kiss_miss(TABLE, game.balls, corrected, 9, option.pocket) is None
+    final = simulate(TABLE, game.balls, corrected).final
+    assert not final.on_table[final.index(9)] and final.on_table[final.index(0)]
+
+
+def test_with_a_billiard_on_the_nine_the_pro_plays_it_and_wins() -> None:
+    game = set_table(Game.new("nine_ball", ["ana", "bot"], seed=1), BILLIARD_TABLE)
+    turn = Bot("pro").plan(game, 0)
+    assert turn.kind == "pot" and turn.via == "billiard" and turn.target == 9, turn
+    assert turn.shot is not None
+    result = simulate(TABLE, game.balls, turn.shot)
+    facts = shot_facts(game.balls, result)
+    assert facts.first_contact == 1
+    assert route(result.events, 9, facts.first_contact) == "billiard"
+    outcome, _ = play_turn(game, 0, turn)
+    assert outcome is not None and outcome.winner == 0 and 9 in outcome.pocketed

@@ -157,7 +157,7 @@ def test_a_hint_shows_the_strongest_plan_without_playing_it(client: TestClient):
     assert hint["place"] is not None and 0 < hint["speed"] <= 12.0  # ball in hand in practice
     assert len(hint["tip"]) == 2
     assert (
-        hint["via"] in ("direct", "bank", "combo", "carom")
+        hint["via"] in ("direct", "bank", "combo", "carom", "billiard")
         if hint["kind"] == "pot"
         else not hint["via"]
     )

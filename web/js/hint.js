@@ -56,6 +56,7 @@ export function describeHint(hint) {
     if (hint.via === 'bank') what = `Bank the ${hint.target} off a cushion`;
     else if (hint.via === 'combo') what = `Pot the ${hint.target} in a combination`;
     else if (hint.via === 'carom') what = `Carom the ${hint.target} off another ball`;
+    else if (hint.via === 'billiard') what = `Glance the cue ball off the first ball into the ${hint.target}`;
   }
   else if (hint.kind === 'kick') what = 'Kick at it off a cushion';
   else if (hint.kind === 'break') what = 'Break';
