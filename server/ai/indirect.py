@@ -11,6 +11,7 @@ real rebound and the throw between the balls decide what is played.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
 from dataclasses import replace
 
 import numpy as np
@@ -262,7 +263,6 @@ def combo_options(
     `MAX_LINK` from the second's ghost ball or the approach to the mouth is too steep.
     The chance carries the first ball's angle error through the second collision."""
     r = table.ball_radius
-    pk = pockets_of(table)
     ids, positions, on, cue_row = _rows(balls)
     if not on[cue_row]:
         return []
@@ -273,52 +273,81 @@ def combo_options(
         if second not in present:
             continue
         row_b = present[second]
-        ball_b = positions[row_b]
-        for p in range(len(pk.aims)):
-            to_pocket = pk.aims[p] - ball_b
-            d2 = float(np.linalg.norm(to_pocket))
-            if d2 < 1e-6:
-                continue
-            u_b = to_pocket / d2
-            cos_in = float(u_b @ pk.outward[p])
-            window = _window(model, pk.mouths[p], cos_in, r, pk.side[p])
-            if cos_in <= MIN_COS_IN or window <= 0.003:
-                continue
-            if not _clear(positions, on, (cue_row, row_b), ball_b, pk.aims[p], r):
-                continue
-            ghost_b = ball_b - 2 * r * u_b
+        for p, d2, u_b, window in _pocket_ways(table, positions, on, row_b, cue_row, model):
+            ghost_b = positions[row_b] - 2 * r * u_b
             for first in carriers:
                 if first == second or first not in present:
                     continue
                 option = _combo(
                     table, positions, on, cue_row, present[first], row_b, cue, ghost_b, u_b
                 )
-                if option is None:
-                    continue
-                d1, link, cut_a, cut_b, angle = option
-                # The first ball's error, then the second's: the angle error grows by
-                # the link over a ball's width at the second collision.
-                error_a = ghost_error(d1, aim_sigma, math.cos(cut_a), r, 1.0)
-                aim_error = ghost_error(link, error_a, math.cos(cut_b), r, 1.0)
-                sigma = _sigma(model, aim_error, cut_b, 0.0)
-                chance = float(drop_chance(window, d2, sigma))
-                out.append(
-                    PotOption(
-                        target=second,
-                        pocket=p,
-                        angle=angle,
-                        chance=chance,
-                        d1=d1,
-                        d2=d2,
-                        cut=cut_a,
-                        via="combo",
-                        carrier=first,
-                        link=link,
-                        link_cut=cut_b,
-                    )
-                )
+                if option is not None:
+                    route = (second, p, first, "combo")
+                    out.append(_relayed(route, option, window, d2, aim_sigma, model, r))
     out.sort(key=lambda o: -o.chance)
     return out
+
+
+def _pocket_ways(
+    table: Table,
+    positions: np.ndarray,
+    on: np.ndarray,
+    row: int,
+    cue_row: int,
+    model: ChanceModel,
+) -> Iterator[tuple[int, float, np.ndarray, float]]:
+    """The pockets the ball in row `row` can be sent into, struck by another ball (a
+    combination's second ball, a billiard's ball to pot): (pocket, distance to its aim
+    point, unit direction there, the mouth's window under `model`), for each whose approach
+    is not too steep and whose path is clear (of all but that ball and the cue ball)."""
+    r = table.ball_radius
+    pk = pockets_of(table)
+    ball = positions[row]
+    for p in range(len(pk.aims)):
+        to_pocket = pk.aims[p] - ball
+        d2 = float(np.linalg.norm(to_pocket))
+        if d2 < 1e-6:
+            continue
+        u = to_pocket / d2
+        cos_in = float(u @ pk.outward[p])
+        window = _window(model, pk.mouths[p], cos_in, r, pk.side[p])
+        if cos_in <= MIN_COS_IN or window <= 0.003:
+            continue
+        if _clear(positions, on, (cue_row, row), ball, pk.aims[p], r):
+            yield p, d2, u, window
+
+
+def _relayed(
+    route: tuple[int, int, int, str],
+    way: tuple[float, float, float, float, float],
+    window: float,
+    d2: float,
+    aim_sigma: float,
+    model: ChanceModel,
+    r: float,
+) -> PotOption:
+    """A pot through two collisions, a combination or a billiard: `route` is (the ball to
+    pot, the pocket, the first ball, `via`), `way` (cue ball to the first contact, the link
+    to the second, the cut of each, the cue's direction). The first ball's angle error
+    turns the path to the second collision, where it grows by the link over a ball's width."""
+    target, pocket, carrier, via = route
+    d1, link, cut_a, cut_b, angle = way
+    error_a = ghost_error(d1, aim_sigma, math.cos(cut_a), r, 1.0)
+    aim_error = ghost_error(link, error_a, math.cos(cut_b), r, 1.0)
+    sigma = _sigma(model, aim_error, cut_b, 0.0)
+    return PotOption(
+        target=target,
+        pocket=pocket,
+        angle=angle,
+        chance=float(drop_chance(window, d2, sigma)),
+        d1=d1,
+        d2=d2,
+        cut=cut_a,
+        via=via,
+        carrier=carrier,
+        link=link,
+        link_cut=cut_b,
+    )
 
 
 def _combo(
@@ -503,7 +532,6 @@ def billiard_options(
     or the approach to the mouth is too steep. The chance carries the cue ball's error
     through the glance and the link, as a combination's."""
     r = table.ball_radius
-    pk = pockets_of(table)
     ids, positions, on, cue_row = _rows(balls)
     if not on[cue_row]:
         return []
@@ -520,52 +548,18 @@ def billiard_options(
             if second == first or second not in present:
                 continue
             row_b = present[second]
-            ball_b = positions[row_b]
-            for p in range(len(pk.aims)):
-                to_pocket = pk.aims[p] - ball_b
-                d2 = float(np.linalg.norm(to_pocket))
-                if d2 < 1e-6:
-                    continue
-                u_b = to_pocket / d2
-                cos_in = float(u_b @ pk.outward[p])
-                window = _window(model, pk.mouths[p], cos_in, r, pk.side[p])
-                if cos_in <= MIN_COS_IN or window <= 0.003:
-                    continue
-                ghost_b = ball_b - 2 * r * u_b
+            for p, d2, u_b, window in _pocket_ways(table, positions, on, row_b, cue_row, model):
+                ghost_b = positions[row_b] - 2 * r * u_b
                 if not (r <= ghost_b[0] <= table.length - r and r <= ghost_b[1] <= table.width - r):
                     continue
                 if np.linalg.norm(ghost_b - positions[row_a]) > MAX_BILLIARD_LINK + 2 * r:
                     continue
-                if not _clear(positions, on, (row_b, cue_row), ball_b, pk.aims[p], r):
-                    continue
                 for contact in _kiss_points(cue, positions[row_a], ghost_b, r, roll):
-                    option = _billiard(
-                        table, positions, on, (cue_row, row_a, row_b), contact, ghost_b, u_b
-                    )
-                    if option is None:
-                        continue
-                    d1, link, cut_a, cut_b, angle = option
-                    # The line of centres at the glance turns by the first ball's angle
-                    # error, and the cue ball's path with it; then over the link to the
-                    # ball to pot, as in a combination.
-                    error_a = ghost_error(d1, aim_sigma, math.cos(cut_a), r, 1.0)
-                    aim_error = ghost_error(link, error_a, math.cos(cut_b), r, 1.0)
-                    sigma = _sigma(model, aim_error, cut_b, 0.0)
-                    out.append(
-                        PotOption(
-                            target=second,
-                            pocket=p,
-                            angle=angle,
-                            chance=float(drop_chance(window, d2, sigma)),
-                            d1=d1,
-                            d2=d2,
-                            cut=cut_a,
-                            via="billiard",
-                            carrier=first,
-                            link=link,
-                            link_cut=cut_b,
-                        )
-                    )
+                    rows = (cue_row, row_a, row_b)
+                    way = _billiard(table, positions, on, rows, contact, ghost_b, u_b)
+                    if way is not None:
+                        route = (second, p, first, "billiard")
+                        out.append(_relayed(route, way, window, d2, aim_sigma, model, r))
     out.sort(key=lambda o: -o.chance)
     return out
 
