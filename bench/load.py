@@ -10,15 +10,17 @@ nearly always moving); `--think` seconds pass between a `state` and the bot's ac
 `--computer K`: K of the rooms seat one bot against the computer opponent (the top level,
 planning in the server's `POOL_COMPUTER_WORKERS` processes) instead of a second bot.
 The clients run on uvloop (`--loop asyncio`: the standard loop) and this process's cyclic
-garbage collector is paused during the measured window: the instrument's own pauses are not
-the server's lateness, and the cheaper the bots, the less of the shared machine they take.
+garbage collector is paused from the warm-up to the end of the window (its one full pass,
+0.3-0.4 s at 1,000 rooms, falls in the warm-up): the instrument's own pauses are not the
+server's lateness, and the cheaper the bots, the less of the shared machine they take.
 
 Prints, over the S measured seconds (after every client is connected), the median of the
 runs:
 - `motion` messages received per second (all clients; one a shot and client: the whole
   shot comes at the strike, docs/protocol.md);
 - shot start p50 / p99 / max: from the shooter's `shoot` to the shot's `motion` arriving,
-  at every client of the room (the players and the spectator);
+  at every client of the room (the players and the spectator), for the shots struck in the
+  window (their motions may come up to GRACE seconds after it);
 - frames in hand: of every tick of every shot at every client, the share whose motion had
   arrived before the tick was due to be drawn, ticks being due START_BUDGET (0.1 s) +
   k/120 s after the `shoot` (so 100 % when every motion comes within 0.1 s);
@@ -84,7 +86,12 @@ class CountingConnection(ClientConnection):
 
 @dataclass
 class Stats:
-    measuring: bool = False
+    measuring: bool = False  # bytes and shots shown count while this is set
+    # Starts count by when the `shoot` was sent: in [opened, closed). A shot struck just
+    # before the window whose motion came inside it would carry this process's own pauses
+    # (and the burst of actions they released) into the figures.
+    opened: float = math.inf
+    closed: float = math.inf
     motions: int = 0  # `motion` messages received (one a shot and client)
     starts: list[float] = field(default_factory=list)  # shoot sent -> motion, every client
     ticks: int = 0  # the shots' ticks, summed over the clients that got them ...
@@ -93,6 +100,12 @@ class Stats:
     shots: int = 0
     rolling_bytes: int = 0
     rolling_seconds: float = 0.0
+
+    def motion_came(self, sent: float, now: float, duration: float) -> None:
+        """A shot's motion came at `now`: timed if its `shoot` was sent in the window (NaN,
+        a shot nobody here struck: never)."""
+        if self.opened <= sent < self.closed:
+            count_motion(self, now - sent, duration)
 
 
 @dataclass
@@ -288,8 +301,7 @@ async def client(
                         if bots.computer:
                             bots.last_shoot = None
                     sent = bots.shoot_sent[shot]
-                    if stats.measuring and not math.isnan(sent):
-                        count_motion(stats, now - sent, duration)
+                    stats.motion_came(sent, now, duration)
                     if seat is None:
                         shown[shot] = (ws.received - len(raw), duration)
                     continue
@@ -331,6 +343,7 @@ async def client(
 
 MOTION_HEADER = struct.Struct("<BBIIIBH")  # docs/protocol.md, `motion`
 START_BUDGET = 0.1  # s from `shoot` by which a shot's playback should start
+GRACE = 3.0  # s after the window for the motions of the shots struck in it
 
 
 def parse_motion(raw: bytes) -> tuple[int, float]:
@@ -471,22 +484,24 @@ async def drive(
         for seat in (None, *range(len(bots.tokens))):  # a spectator and the bot players
             await spawn(bots, seat)
     ready.set()
-    await asyncio.sleep(warmup)  # every room starts shooting; the connections' burst settles
-    bytes0 = sum(ws.received for ws in connected)
-    cpu0, own0, t0 = cpu_seconds(proc.pid), own_cpu_seconds(), time.perf_counter()
-    planners0 = children_cpu_seconds(proc.pid)
-    all0, steal0 = machine_ticks()
-    with no_cyclic_gc():
-        stats.measuring = True
+    with no_cyclic_gc():  # its one full collection, 0.3-0.4 s at 1,000 rooms, in the warm-up
+        await asyncio.sleep(warmup)  # every room starts shooting; the bursts settle
+        bytes0 = sum(ws.received for ws in connected)
+        cpu0, own0, t0 = cpu_seconds(proc.pid), own_cpu_seconds(), time.perf_counter()
+        planners0 = children_cpu_seconds(proc.pid)
+        all0, steal0 = machine_ticks()
+        stats.measuring, stats.opened = True, t0
         await asyncio.sleep(seconds)
-        stats.measuring = False
-    elapsed = time.perf_counter() - t0
-    async with httpx.AsyncClient(base_url=base, timeout=60) as http:
-        server = (await http.get("/api/stats", params={"window": elapsed})).json()["stream"]
-    cpu1, own1 = cpu_seconds(proc.pid), own_cpu_seconds()
-    planners1 = children_cpu_seconds(proc.pid)
-    all1, steal1 = machine_ticks()
-    bytes1 = sum(ws.received for ws in connected)
+        stats.measuring, stats.closed = False, time.perf_counter()
+        elapsed = stats.closed - t0
+        cpu1, own1 = cpu_seconds(proc.pid), own_cpu_seconds()
+        planners1 = children_cpu_seconds(proc.pid)
+        all1, steal1 = machine_ticks()
+        bytes1 = sum(ws.received for ws in connected)
+        async with httpx.AsyncClient(base_url=base, timeout=60) as http:
+            server = (await http.get("/api/stats", params={"window": elapsed})).json()["stream"]
+        # The window's last shots: their motions may still be on the way.
+        await asyncio.sleep(GRACE)
     stop.set()
     for task in tasks:
         task.cancel()

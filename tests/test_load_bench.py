@@ -1,14 +1,17 @@
-"""`python -m bench.load` reports the CPU its server's computer planners took (the server's
-child processes), read from /proc: a child that has used CPU is counted, a process that is
-not a child is not."""
+"""`python -m bench.load`: the CPU its server's computer planners took (the server's child
+processes), read from /proc: a child that has used CPU is counted, a process that is not a
+child is not; and which shots' starts are timed."""
 
 from __future__ import annotations
 
+import math
 import os
 import subprocess
 import sys
 
-from bench.load import children_cpu_seconds, cpu_seconds
+import pytest
+
+from bench.load import Stats, children_cpu_seconds, cpu_seconds
 
 # Spins until it has used 0.3 s of CPU, says so, then waits (not using CPU) to be released.
 SPIN = (
@@ -35,3 +38,21 @@ def test_the_cpu_of_a_child_process_is_counted_and_only_a_childs() -> None:
         assert child.stdin is not None
         child.stdin.close()
         child.wait(timeout=30)
+
+
+def test_a_start_is_timed_only_for_a_shot_struck_inside_the_window() -> None:
+    """A shot struck before the window whose motion comes inside it carried the benchmark's
+    own pauses into the figures; one struck inside whose motion comes after is timed."""
+    stats = Stats()
+    stats.motion_came(sent=1.0, now=1.05, duration=1.0)  # before any window
+    stats.opened = 10.0
+    stats.motion_came(sent=9.9, now=10.3, duration=1.0)  # struck before the window
+    stats.motion_came(sent=10.0, now=10.02, duration=1.0)
+    stats.motion_came(sent=math.nan, now=10.5, duration=1.0)  # struck by nobody here
+    stats.closed = 30.0
+    stats.motion_came(sent=29.99, now=30.2, duration=0.5)  # its motion after the window
+    stats.motion_came(sent=30.0, now=30.01, duration=1.0)  # struck after
+    assert stats.starts == pytest.approx([0.02, 0.21])
+    assert stats.motions == 2
+    # 120 ticks in hand; of 60, the motion came 0.11 s late: 14 ticks (13.2) were due before.
+    assert (stats.ticks, stats.in_hand) == (180, 120 + 60 - 14)
