@@ -64,6 +64,11 @@ def _rows(balls: BallSet) -> tuple[list[int], np.ndarray, np.ndarray, int]:
     return ids, balls.positions, balls.on_table, ids.index(CUE)
 
 
+def _object_rows(ids: list[int], on: np.ndarray) -> dict[int, int]:
+    """The row of each object ball on the table, by id (in the rows' order)."""
+    return {b: row for row, b in enumerate(ids) if b != CUE and on[row]}
+
+
 def _clear(
     positions: np.ndarray,
     on: np.ndarray,
@@ -267,7 +272,7 @@ def combo_options(
     if not on[cue_row]:
         return []
     cue = positions[cue_row]
-    present = {b: ids.index(b) for b in ids if b != CUE and on[ids.index(b)]}
+    present = _object_rows(ids, on)
     out: list[PotOption] = []
     for second in objects:
         if second not in present:
@@ -413,7 +418,7 @@ def carom_options(
     ids, positions, on, cue_row = _rows(balls)
     if not on[cue_row]:
         return []
-    present = {b: ids.index(b) for b in ids if b != CUE and on[ids.index(b)]}
+    present = _object_rows(ids, on)
     out: list[PotOption] = []
     for target in targets:
         if target not in present:
@@ -536,7 +541,7 @@ def billiard_options(
     if not on[cue_row]:
         return []
     cue = positions[cue_row]
-    present = {b: ids.index(b) for b in ids if b != CUE and on[ids.index(b)]}
+    present = _object_rows(ids, on)
     out: list[PotOption] = []
     for first in firsts:
         if first not in present:
