@@ -16,7 +16,6 @@ serialises them on its file lock). PostgreSQL is a private server started here, 
 from __future__ import annotations
 
 import argparse
-import json
 import statistics
 import sys
 import tempfile
@@ -26,29 +25,23 @@ from collections.abc import Callable
 from pathlib import Path
 
 from server.codec import encode
-from server.engine import Shot, Table, rack, simulate
+from server.config import Settings
+from server.engine import Shot, Table, rack
+from server.protocol.plan import motion_text
+from server.rooms.prepare import prepare_shot
 from server.store import Database, Repository
 
 SHOTS_PER_MATCH = 40
+FRAME_EVERY = Settings.model_fields["frame_every"].default  # the server's default
 
 
 def payload() -> dict:
-    """One break's records, of the sizes the server stores (motion as JSON lines of the
-    frames, about what the stream sends)."""
+    """One break's records, of the sizes the server stores (the motion as the server
+    stores it: `motion_text` of the break's plan, what was streamed)."""
     table = Table.pool("9ft")
     balls = rack("eight_ball", table, seed=1)
-    result = simulate(table, balls, Shot(0.0, 9.0))
-    frames = (result.frames.positions * 1000).round().astype(int)  # mm, as ints
-    lines, shown = [], frames[0]
-    for i in range(0, len(frames), 12):  # the balls that moved since the last frame sent
-        moved = {
-            b: frames[i][b].tolist()
-            for b in range(len(frames[i]))
-            if (frames[i][b] != shown[b]).any()
-        }
-        shown = frames[i]
-        lines.append(f"{i / 120!r} frame {json.dumps({'tick': i, 'p': moved})}\n")
-    motion = "".join(lines)
+    _, plan = prepare_shot(table, balls, Shot(0.0, 9.0), 1, FRAME_EVERY)
+    motion = motion_text(plan)
     fields = [table.length, table.width, table.ball_radius, table.corner_mouth, table.side_mouth]
     return {
         "shot": {"angle": 0.0, "speed": 9.0, "tip": [0.0, 0.0]},
