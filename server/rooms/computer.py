@@ -22,6 +22,7 @@ import os
 import signal
 import threading
 import time
+import weakref
 from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
@@ -48,7 +49,12 @@ PARENT_CHECK = 1.0  # s between a planner's looks at whether its server is still
 STARVED_AFTER = 10.0
 STARVED_SHARE = 0.1
 STARVED_CHECK = 0.5  # s between looks at the planners' CPU while a plan is out
+CPU_READ_EVERY = 0.25  # s a reading of the planners' CPU serves every plan waiting
 _pools: dict[int, ProcessPoolExecutor] = {}  # workers -> the pool this process shares
+# pool -> (loop time, its planners' CPU seconds then): the last reading, shared
+_cpu_read: weakref.WeakKeyDictionary[ProcessPoolExecutor, tuple[float, float | None]] = (
+    weakref.WeakKeyDictionary()
+)
 _fallback = ThreadPoolExecutor(1, thread_name_prefix="starved-plan")  # one at a time
 _servers = 0  # running apps of this process that may plan in `_pools`
 _stopped = False  # the last app stopped: plans still asked for run in a thread
@@ -74,12 +80,19 @@ def _pids(pool: ProcessPoolExecutor) -> list[int]:
     return list(pool._processes or {})
 
 
-def _cpu_seconds(pool: ProcessPoolExecutor) -> float | None:
-    """CPU time the pool's processes have had; None when it cannot be read (no /proc, or
-    none started yet)."""
+def _cpu_seconds(pool: ProcessPoolExecutor, now: float) -> float | None:
+    """CPU time the pool's processes have had by about `now` (loop time); None when it
+    cannot be read (no /proc, or none started yet). Read from /proc at most every
+    `CPU_READ_EVERY` seconds for all the plans waiting on the pool: with 50 computer rooms
+    each plan out read it twice a second, some 4 % of the event loop's time."""
+    read = _cpu_read.get(pool)
+    if read is not None and 0 <= now - read[0] < CPU_READ_EVERY:
+        return read[1]
     stats = [process_stat(pid) for pid in _pids(pool)]
     seconds = [stat[1] for stat in stats if stat is not None]
-    return sum(seconds) if seconds else None
+    value = sum(seconds) if seconds else None
+    _cpu_read[pool] = (now, value)
+    return value
 
 
 def _stop(pool: ProcessPoolExecutor) -> None:
@@ -180,12 +193,14 @@ async def _planned_in(future: asyncio.Future, pool: ProcessPoolExecutor, starved
     core busy; a backlog of plans keeps them busy, and a cold start compiles, so neither
     counts as starving."""
     loop = asyncio.get_running_loop()
-    since, cpu_since = loop.time(), _cpu_seconds(pool)
+    since = loop.time()
+    cpu_since = _cpu_seconds(pool, since)
     while True:
         done, _ = await asyncio.wait({future}, timeout=STARVED_CHECK)
         if done:
             return True
-        now, cpu = loop.time(), _cpu_seconds(pool)
+        now = loop.time()
+        cpu = _cpu_seconds(pool, now)
         if cpu is None or cpu_since is None:  # unknown: never called starved
             since, cpu_since = now, cpu
             continue
