@@ -26,9 +26,14 @@ runs:
   k/120 s after the `shoot` (so 100 % when every motion comes within 0.1 s);
 - the server's own view (`GET /api/stats`): from the room taking `shoot` to its `motion`
   leaving (simulation, tracing, judging, any wait for a thread or the loop), p50 / p99;
-- server CPU (process user+system time from /proc, all threads, in % of one core), its
+- server CPU (process user+system time from /proc, all threads, in % of one core), the
+  part of it its event loop took (the main thread; also per shot the server started in the
+  window, a figure that moves far less from run to run than the latencies), its
   computer planners' CPU (the processes it started; idle-class, so they take only what
-  the rooms leave) and this client process's CPU, so a saturated client is visible; and
+  the rooms leave) and this client process's CPU, so a saturated client is visible (per
+  shot too: the same work in every run, so it tells how fast the machine ran; on a VM
+  whose neighbours slow it down without any steal showing, the runs with a high p99 are
+  the ones where it is high); and
   the machine's steal time (a VM host taking the cores away: runs with high steal are slow
   for reasons outside the code);
 - bytes per second per client on the wire (WebSocket frames as received from the socket,
@@ -166,6 +171,15 @@ def start_server(
 def cpu_seconds(pid: int) -> float:
     """User + system CPU time of a process (all its threads)."""
     stat = process_stat(pid)
+    if stat is None:
+        raise ProcessLookupError(pid)
+    return stat[1]
+
+
+def loop_cpu_seconds(pid: int) -> float:
+    """User + system CPU time of the process's main thread: the server's event loop (its
+    other threads simulate shots and write the store)."""
+    stat = process_stat(pid, thread=pid)
     if stat is None:
         raise ProcessLookupError(pid)
     return stat[1]
@@ -488,6 +502,7 @@ async def drive(
         await asyncio.sleep(warmup)  # every room starts shooting; the bursts settle
         bytes0 = sum(ws.received for ws in connected)
         cpu0, own0, t0 = cpu_seconds(proc.pid), own_cpu_seconds(), time.perf_counter()
+        loop0 = loop_cpu_seconds(proc.pid)
         planners0 = children_cpu_seconds(proc.pid)
         all0, steal0 = machine_ticks()
         stats.measuring, stats.opened = True, t0
@@ -495,6 +510,7 @@ async def drive(
         stats.measuring, stats.closed = False, time.perf_counter()
         elapsed = stats.closed - t0
         cpu1, own1 = cpu_seconds(proc.pid), own_cpu_seconds()
+        loop1 = loop_cpu_seconds(proc.pid)
         planners1 = children_cpu_seconds(proc.pid)
         all1, steal1 = machine_ticks()
         bytes1 = sum(ws.received for ws in connected)
@@ -521,9 +537,16 @@ async def drive(
         "server_start_p99_ms": server["start_p99_ms"] if server["shots"] else math.nan,
         "shots": stats.shots,
         "server_cpu": 100 * (cpu1 - cpu0) / elapsed,
+        "loop_cpu": 100 * (loop1 - loop0) / elapsed,
+        "loop_ms_per_shot": 1000 * (loop1 - loop0) / server["shots"]
+        if server["shots"]
+        else math.nan,
         "planner_cpu": 100 * (planners1 - planners0) / elapsed,
         "steal_pct": 100 * (steal1 - steal0) / max(1, all1 - all0),
         "client_cpu": 100 * (own1 - own0) / elapsed,
+        "client_ms_per_shot": 1000 * (own1 - own0) / server["shots"]
+        if server["shots"]
+        else math.nan,
         "bytes_per_s_client": (bytes1 - bytes0) / elapsed / max(1, clients),
         "rolling_bytes_per_s": stats.rolling_bytes / stats.rolling_seconds
         if stats.rolling_seconds
@@ -545,9 +568,12 @@ COLUMNS = [
     ("shots", "shots", "{:.0f}"),
     ("shot s", "shot_seconds", "{:.2f}"),
     ("server CPU %", "server_cpu", "{:.0f}"),
+    ("loop CPU %", "loop_cpu", "{:.0f}"),
+    ("loop ms/shot", "loop_ms_per_shot", "{:.2f}"),
     ("planner CPU %", "planner_cpu", "{:.0f}"),
     ("plans in thread", "plans_in_thread", "{:.0f}"),
     ("client CPU %", "client_cpu", "{:.0f}"),
+    ("client ms/shot", "client_ms_per_shot", "{:.2f}"),
     ("steal %", "steal_pct", "{:.0f}"),
     ("B/s/client", "bytes_per_s_client", "{:.0f}"),
     ("B/s rolling", "rolling_bytes_per_s", "{:.0f}"),

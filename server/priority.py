@@ -25,11 +25,13 @@ def run_when_idle() -> None:
         os.nice(FALLBACK_NICE)
 
 
-def process_stat(pid: int) -> tuple[int, float] | None:
-    """(parent pid, user + system CPU seconds of all its threads) of process `pid`, from
-    Linux's /proc; None when it cannot be read (the process ended, or no /proc)."""
+def process_stat(pid: int, thread: int | None = None) -> tuple[int, float] | None:
+    """(parent pid, user + system CPU seconds of all its threads) of process `pid`, or of
+    its one thread `thread` (a native thread id), from Linux's /proc; None when it cannot
+    be read (the process ended, or no /proc)."""
+    path = f"/proc/{pid}/stat" if thread is None else f"/proc/{pid}/task/{thread}/stat"
     try:
-        fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+        fields = Path(path).read_text().rsplit(")", 1)[1].split()
         return int(fields[1]), (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
     except (OSError, IndexError, ValueError):
         return None

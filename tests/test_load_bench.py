@@ -11,7 +11,7 @@ import sys
 
 import pytest
 
-from bench.load import Stats, children_cpu_seconds, cpu_seconds
+from bench.load import Stats, children_cpu_seconds, cpu_seconds, loop_cpu_seconds
 
 # Spins until it has used 0.3 s of CPU, says so, then waits (not using CPU) to be released.
 SPIN = (
@@ -34,6 +34,35 @@ def test_the_cpu_of_a_child_process_is_counted_and_only_a_childs() -> None:
         assert cpu_seconds(child.pid) >= 0.25
         # Only a parent counts a process: the child, which started none, counts nothing.
         assert children_cpu_seconds(child.pid) == 0.0
+    finally:
+        assert child.stdin is not None
+        child.stdin.close()
+        child.wait(timeout=30)
+
+
+# The same spin in a second thread, while the main thread waits.
+SPIN_ASIDE = (
+    "import sys, threading, time\n"
+    "def spin():\n"
+    "    while time.thread_time() < 0.3: pass\n"
+    "threading.Thread(target=spin).start()\n"
+    "for t in threading.enumerate():\n"
+    "    if t is not threading.current_thread(): t.join()\n"
+    "print('spun', flush=True)\n"
+    "sys.stdin.read()\n"
+)
+
+
+@pytest.mark.parametrize(("program", "on_the_loop"), [(SPIN, True), (SPIN_ASIDE, False)])
+def test_the_loops_cpu_is_the_main_threads_alone(program: str, on_the_loop: bool) -> None:
+    child = subprocess.Popen(
+        [sys.executable, "-c", program], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True
+    )
+    try:
+        assert child.stdout is not None and child.stdout.readline() == "spun\n"
+        assert cpu_seconds(child.pid) >= 0.25
+        loop = loop_cpu_seconds(child.pid)
+        assert loop >= 0.25 if on_the_loop else loop < 0.15, loop
     finally:
         assert child.stdin is not None
         child.stdin.close()
