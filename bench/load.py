@@ -168,18 +168,10 @@ def start_server(
     )
 
 
-def cpu_seconds(pid: int) -> float:
-    """User + system CPU time of a process (all its threads)."""
-    stat = process_stat(pid)
-    if stat is None:
-        raise ProcessLookupError(pid)
-    return stat[1]
-
-
-def loop_cpu_seconds(pid: int) -> float:
-    """User + system CPU time of the process's main thread: the server's event loop (its
-    other threads simulate shots and write the store)."""
-    stat = process_stat(pid, thread=pid)
+def cpu_seconds(pid: int, thread: int | None = None) -> float:
+    """User + system CPU time of a process (all its threads), or of its one thread
+    `thread` (`thread=pid`: the main thread, the server's event loop)."""
+    stat = process_stat(pid, thread)
     if stat is None:
         raise ProcessLookupError(pid)
     return stat[1]
@@ -502,7 +494,7 @@ async def drive(
         await asyncio.sleep(warmup)  # every room starts shooting; the bursts settle
         bytes0 = sum(ws.received for ws in connected)
         cpu0, own0, t0 = cpu_seconds(proc.pid), own_cpu_seconds(), time.perf_counter()
-        loop0 = loop_cpu_seconds(proc.pid)
+        loop0 = cpu_seconds(proc.pid, thread=proc.pid)
         planners0 = children_cpu_seconds(proc.pid)
         all0, steal0 = machine_ticks()
         stats.measuring, stats.opened = True, t0
@@ -510,7 +502,7 @@ async def drive(
         stats.measuring, stats.closed = False, time.perf_counter()
         elapsed = stats.closed - t0
         cpu1, own1 = cpu_seconds(proc.pid), own_cpu_seconds()
-        loop1 = loop_cpu_seconds(proc.pid)
+        loop1 = cpu_seconds(proc.pid, thread=proc.pid)
         planners1 = children_cpu_seconds(proc.pid)
         all1, steal1 = machine_ticks()
         bytes1 = sum(ws.received for ws in connected)
@@ -523,6 +515,11 @@ async def drive(
         task.cancel()
     await asyncio.gather(*tasks, return_exceptions=True)
     clients = len(connected)
+
+    def per_shot(seconds: float) -> float:
+        """ms per shot the server started in the window."""
+        return 1000 * seconds / server["shots"] if server["shots"] else math.nan
+
     return {
         "rooms": rooms,
         "clients": clients,
@@ -538,15 +535,11 @@ async def drive(
         "shots": stats.shots,
         "server_cpu": 100 * (cpu1 - cpu0) / elapsed,
         "loop_cpu": 100 * (loop1 - loop0) / elapsed,
-        "loop_ms_per_shot": 1000 * (loop1 - loop0) / server["shots"]
-        if server["shots"]
-        else math.nan,
+        "loop_ms_per_shot": per_shot(loop1 - loop0),
         "planner_cpu": 100 * (planners1 - planners0) / elapsed,
         "steal_pct": 100 * (steal1 - steal0) / max(1, all1 - all0),
         "client_cpu": 100 * (own1 - own0) / elapsed,
-        "client_ms_per_shot": 1000 * (own1 - own0) / server["shots"]
-        if server["shots"]
-        else math.nan,
+        "client_ms_per_shot": per_shot(own1 - own0),
         "bytes_per_s_client": (bytes1 - bytes0) / elapsed / max(1, clients),
         "rolling_bytes_per_s": stats.rolling_bytes / stats.rolling_seconds
         if stats.rolling_seconds

@@ -1,6 +1,7 @@
 """`python -m bench.load`: the CPU its server's computer planners took (the server's child
 processes), read from /proc: a child that has used CPU is counted, a process that is not a
-child is not; and which shots' starts are timed."""
+child is not; the loop's CPU, its main thread's alone; and which shots' starts are
+timed."""
 
 from __future__ import annotations
 
@@ -11,7 +12,7 @@ import sys
 
 import pytest
 
-from bench.load import Stats, children_cpu_seconds, cpu_seconds, loop_cpu_seconds
+from bench.load import Stats, children_cpu_seconds, cpu_seconds
 
 # Spins until it has used 0.3 s of CPU, says so, then waits (not using CPU) to be released.
 SPIN = (
@@ -61,7 +62,7 @@ def test_the_loops_cpu_is_the_main_threads_alone(program: str, on_the_loop: bool
     try:
         assert child.stdout is not None and child.stdout.readline() == "spun\n"
         assert cpu_seconds(child.pid) >= 0.25
-        loop = loop_cpu_seconds(child.pid)
+        loop = cpu_seconds(child.pid, thread=child.pid)
         assert loop >= 0.25 if on_the_loop else loop < 0.15, loop
     finally:
         assert child.stdin is not None
