@@ -29,8 +29,9 @@ ball's line as well (an arm that does not allow for the squirt of the tip it str
 docs/ai-rounds.md, "Squirt round"), `ball-speed` with the speed's sigma on the ball's speed, not
 the cue's (docs/ai-rounds.md, "Cue-speed round"). It says what the racks are lost to.
 
-`--table` plays every rack and game on an 8ft or 7ft table instead of the rooms' 9ft: the
-tournaments' FastFiz table (2.236 x 1.116 m, jawless pockets) is nearest the 8ft.
+`--table` plays every rack and game on an 8ft or 7ft table instead of the rooms' 9ft, or
+on `fastfiz`, the tournaments' own table in our engine (2.236 x 1.116 m, and pockets
+without jaws: a ball drops as it crosses the pocket's line; `bench/fastfiz.py`).
 
 `--kind nine_ball` plays the runouts, the greedy games and the ladder at 9-ball (the
 goals are 8-ball's): a runout starts with ball in hand after the pro's 9-ball break, the 9
@@ -62,6 +63,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
+from bench.fastfiz import fastfiz_table
 from server.ai import LEVELS, Bot, Turn, play_turn
 from server.ai.aiming import clamp_shot, perturb
 from server.ai.bot import NormalSource
@@ -86,6 +88,12 @@ from server.rules.placement import can_place
 MAX_TURNS = 200  # a game longer than this is stopped and counted as a draw
 GAME_BALL = {"eight_ball": 8, "nine_ball": 9}  # the ball that wins each kind's rack
 TICK = 1.0 / TICK_HZ  # s: the stream's frame clock, the loop-lateness probe's period
+TABLES = (*sorted(TABLE_SIZES), "fastfiz")  # `--table`: a WPA size, or FastFiz's table
+
+
+def table_named(name: str) -> Table:
+    """The table `--table` names: a WPA pool table by size, or FastFiz's (`bench.fastfiz`)."""
+    return fastfiz_table() if name == "fastfiz" else Table.pool(name)
 
 
 # --- the greedy baseline --------------------------------------------------------------
@@ -354,7 +362,7 @@ def play_game(
 ) -> tuple[int | None, Counts]:
     """One game on a `table` ("9ft", "8ft" or "7ft"); returns the winning seat (None when
     stopped) and the counts."""
-    game = Game.new(kind, list(names), breaker=breaker, seed=seed, table=Table.pool(table))
+    game = Game.new(kind, list(names), breaker=breaker, seed=seed, table=table_named(table))
     players = [make_player(names[0], seed * 2 + 1), make_player(names[1], seed * 2 + 2)]
     rng = np.random.default_rng(seed + 12345)
     counts = Counts(games=1)
@@ -387,7 +395,7 @@ def runout_position(
     then seat 1 has ball in hand anywhere: on an open table in 8-ball, the 8 on it; in
     9-ball the 9 on it and no push out."""
     top = LEVELS[-1]
-    game = Game.new(kind, ["breaker", top], breaker=0, seed=seed, table=Table.pool(table))
+    game = Game.new(kind, ["breaker", top], breaker=0, seed=seed, table=table_named(table))
     breaker = Bot(top, seed + 777)
     turn = breaker.plan(game, 0)
     play_turn(game, 0, turn, Arm(BY_NAME[top], BREAK_NOISE), rng)
@@ -819,10 +827,11 @@ def main(argv: list[str] | None = None) -> int:
     )
     parser.add_argument(
         "--table",
-        choices=sorted(TABLE_SIZES),
+        choices=TABLES,
         default="9ft",
-        help="the table every rack and game is played on (the rooms' is 9ft; the "
-        "tournaments' FastFiz table, 2.236 x 1.116 m, is nearest the 8ft)",
+        help="the table every rack and game is played on (the rooms' is 9ft; fastfiz: "
+        "the tournaments' table, 2.236 x 1.116 m, whose balls drop as they cross the "
+        "pocket's line, with no jaws)",
     )
     parser.add_argument(
         "--steps",
