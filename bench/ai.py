@@ -360,8 +360,8 @@ def make_player(name: str, seed: int) -> Player:
 def play_game(
     kind: str, names: tuple[str, str], breaker: int, seed: int, table: str = "9ft"
 ) -> tuple[int | None, Counts]:
-    """One game on a `table` ("9ft", "8ft" or "7ft"); returns the winning seat (None when
-    stopped) and the counts."""
+    """One game on a `table` (one of `TABLES`: "7ft", "8ft", "9ft" or "fastfiz"); returns
+    the winning seat (None when stopped) and the counts."""
     game = Game.new(kind, list(names), breaker=breaker, seed=seed, table=table_named(table))
     players = [make_player(names[0], seed * 2 + 1), make_player(names[1], seed * 2 + 2)]
     rng = np.random.default_rng(seed + 12345)

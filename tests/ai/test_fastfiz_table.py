@@ -14,29 +14,16 @@ import numpy as np
 
 from bench.ai import runout_position
 from bench.fastfiz import FASTFIZ_LENGTH, FASTFIZ_WIDTH, MouthLineTable, fastfiz_table
-from server.engine import BallSet, MotionState, Table, step
-from server.engine.physics.motion import classify
+from server.engine import MotionState, Table
 from server.rules import ANYWHERE
-
-R = 0.028575
-TICK = 1 / 120
-DECEL = 0.01 * 9.81  # a rolling ball's deceleration (u_roll g)
+from tests.support.rolling import DECEL, R, roll
 
 
-def roll(table: Table, start: tuple[float, float], angle_deg: float, speed: float):
-    """Roll one ball from `start` at `angle_deg` until it drops or rests; returns the ball
-    set, the events and the direction."""
+def roll_at(table: Table, start: tuple[float, float], angle_deg: float, speed: float):
+    """`roll` at `angle_deg`, far enough to reach any pocket here; returns the ball set,
+    the events and the direction."""
     direction = (math.cos(math.radians(angle_deg)), math.sin(math.radians(angle_deg)))
-    balls = BallSet.place({0: start})
-    vx, vy = speed * direction[0], speed * direction[1]
-    balls.velocities[0] = (vx, vy)
-    balls.spins[0] = (-vy / R, vx / R, 0.0)
-    classify(balls.velocities, balls.spins, balls.states, 0, R)
-    events = []
-    for k in range(2000):
-        if balls.states[0] not in (MotionState.ROLLING, MotionState.SLIDING):
-            break
-        events += step(table, balls, TICK, k * TICK)
+    balls, events = roll(table, start, direction, speed, travel=1.0)
     return balls, events, direction
 
 
@@ -56,13 +43,14 @@ def test_the_table_is_fastfizs_size_and_mouths() -> None:
 
 def test_a_ball_drops_in_the_side_pocket_as_its_edge_reaches_the_rails_nose() -> None:
     """At 45 degrees, 50 mm off the opening's middle: FastFiz drops it where its centre
-    crosses y = R; our WPA side pocket (127 mm of mouth, sharp points) turns it away."""
+    crosses y = R; our WPA side pocket of the same 120 mm (its points, facings and shelf)
+    turns it away."""
     fastfiz = fastfiz_table()
     mid = fastfiz.length / 2
     for offset in (-0.05, 0.0, 0.05):
         cross = (mid + offset, R)  # where the centre reaches the rail's line
         start = (cross[0] - 0.4 / math.sqrt(2), cross[1] + 0.4 / math.sqrt(2))
-        balls, events, direction = roll(fastfiz, start, -45.0, 1.5)
+        balls, events, direction = roll_at(fastfiz, start, -45.0, 1.5)
         assert balls.states[0] == MotionState.POCKETED, offset
         assert fastfiz.pockets[int(balls.pockets[0])].name == "bottom_side"
         assert not [e for e in events if e.kind in ("cushion", "jaw")], events
@@ -71,7 +59,7 @@ def test_a_ball_drops_in_the_side_pocket_as_its_edge_reaches_the_rails_nose() ->
     wpa = Table(fastfiz.length, fastfiz.width, corner_mouth=0.11, side_mouth=0.12)
     cross = (mid + 0.05, R)
     start = (cross[0] - 0.4 / math.sqrt(2), cross[1] + 0.4 / math.sqrt(2))
-    balls, events, _ = roll(wpa, start, -45.0, 1.5)
+    balls, events, _ = roll_at(wpa, start, -45.0, 1.5)
     assert balls.states[0] != MotionState.POCKETED
     assert [e for e in events if e.kind == "jaw"]
 
@@ -81,7 +69,7 @@ def test_a_ball_beside_the_opening_meets_the_rail() -> None:
     table = fastfiz_table()
     cross = (table.length / 2 + 0.06 + 0.002, R)
     start = (cross[0] - 0.4 / math.sqrt(2), cross[1] + 0.4 / math.sqrt(2))
-    balls, events, _ = roll(table, start, -45.0, 1.5)
+    balls, events, _ = roll_at(table, start, -45.0, 1.5)
     assert balls.states[0] != MotionState.POCKETED
     assert [e.kind for e in events if e.kind != "rest"][:1] == ["cushion"]
 
@@ -96,7 +84,7 @@ def test_a_ball_drops_in_the_corner_as_it_crosses_the_corners_line() -> None:
     across = np.array([1.0, -1.0]) / math.sqrt(2)
     straight_in = (tuple(middle + 0.03 * across + 0.5 * np.array([1.0, 1.0])), -135.0)
     for start, angle in (along_rail, straight_in):
-        balls, events, direction = roll(table, start, angle, 2.0)
+        balls, events, direction = roll_at(table, start, angle, 2.0)
         assert balls.states[0] == MotionState.POCKETED, start
         assert table.pockets[int(balls.pockets[0])].name == "bottom_left"
         assert not [e for e in events if e.kind in ("cushion", "jaw")], events

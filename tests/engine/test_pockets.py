@@ -20,14 +20,10 @@ import math
 import numpy as np
 import pytest
 
-from server.engine import BallSet, MotionState, step
-from server.engine.physics.motion import classify
+from server.engine import MotionState
+from tests.support.rolling import R, roll
 
 from .conftest import in_play_area
-
-R = 0.028575
-TICK = 1 / 120
-DECEL = 0.01 * 9.81  # rolling
 
 POOLTOOL_CORNER_WINDOW = {0.6: 37, 1.5: 34, 4.0: 33}  # straight in, +- mm
 POOLTOOL_RAIL_WINDOW = {0.6: 33, 1.5: 29, 4.0: 28}  # frozen to the rail, mm off it
@@ -38,24 +34,6 @@ POOLTOOL_SIDE_WINDOW = {
 }
 POOLTOOL_CORNER_HANGER_MM = 36.7  # rest point past the middle of the corner's mouth line
 POOLTOOL_SIDE_HANGER_MM = 4.0  # past the side pocket's mouth line
-
-
-def roll(table, start, direction, speed, travel=0.8):
-    """Roll one ball from `start` along `direction`; stop when it drops, rests, or has
-    rolled `travel` metres. Returns (balls, events)."""
-    balls = BallSet.place({0: tuple(start)})
-    vx, vy = speed * direction[0], speed * direction[1]
-    balls.velocities[0] = (vx, vy)
-    balls.spins[0] = (-vy / R, vx / R, 0.0)
-    classify(balls.velocities, balls.spins, balls.states, 0, R)
-    disc = speed * speed - 2 * DECEL * travel
-    cap = (speed - math.sqrt(disc)) / DECEL if disc > 0 else math.inf
-    events = []
-    for k in range(3000):
-        if k * TICK > cap or balls.states[0] not in (MotionState.ROLLING, MotionState.SLIDING):
-            break
-        events += step(table, balls, TICK, k * TICK)
-    return balls, events
 
 
 def approach(table, pocket_name, angle_deg=None):
