@@ -1,7 +1,8 @@
 """FastFiz's table, for asking how the computer would do under the tournaments' conditions.
 
-The issue's runout goal comes from the computational-pool tournaments, played in FastFiz
-(Stanford's simulator; read in its source, `FastFiz.h` and `FastFiz.cpp`). Its table is
+The issue's runout goal is set under the computational-pool tournaments' execution noise,
+and the tournaments were played in FastFiz (Stanford's simulator; read in its source,
+`FastFiz.h` and `FastFiz.cpp`), on its table. That table is
 smaller than the rooms' 9ft (2.236 x 1.116 m against 2.54 x 1.27 m) and its pockets have no
 jaws: the rails are straight lines up to the pocket, and a ball drops the moment it crosses
 the pocket's line: the line through the two points a ball's radius off each jaw point
@@ -29,8 +30,8 @@ from dataclasses import replace
 
 from server.engine.table import Pocket, Table
 
-FASTFIZ_LENGTH = 2.236  # m (FastFiz.h: the table's 88 in)
-FASTFIZ_WIDTH = 1.116  # m (44 in)
+FASTFIZ_LENGTH = 2.236  # m, FastFiz.h's TABLE_LENGTH
+FASTFIZ_WIDTH = 1.116  # m, TABLE_WIDTH
 FASTFIZ_CORNER_WIDTH = 0.11  # m, CORNER_POCKET_WIDTH
 FASTFIZ_SIDE_WIDTH = 0.12  # m, SIDE_POCKET_WIDTH
 BULGE = 0.0001  # m: how far the hole's arc reaches past the drop line, at its middle
