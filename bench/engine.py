@@ -188,7 +188,10 @@ def main(argv: list[str] | None = None) -> None:
     )
     pt = pooltool(max(5, args.runs // 2), args.pooltool_python)
     if pt is None:
-        print("pooltool: not installed (pip install .[compare], or --pooltool-python PATH)")
+        print(
+            "pooltool: not installed (scripts/pooltool-venv,"
+            " then --pooltool-python .venv-pooltool/bin/python)"
+        )
         return
     total = pt["sim_ms"] + pt["continuize_ms"]
     print(

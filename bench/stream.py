@@ -28,9 +28,9 @@ from websockets.asyncio.client import ClientConnection
 
 from server.app import create_app
 from server.config import Settings
-from server.embedded import bound_socket, serving
 from server.protocol.motion import decode_motion
 from server.store import Database
+from tests.support.embedded import bound_socket, serving
 
 
 class CountingConnection(ClientConnection):

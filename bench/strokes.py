@@ -100,7 +100,7 @@ def main(argv: list[str] | None = None) -> int:
     print("  tip (side, height) " + "".join(f"{f:>7.2f}x" for f in FACTORS))
     for tip in TIPS:
         row = "".join(f"{rates[f, tip]:>7.0%} " for f in FACTORS)
-        print(f"  {str(tip):<19}{row}")
+        print(f"  {tip!s:<19}{row}")
     return 0
 
 

@@ -8,6 +8,8 @@ import warnings
 
 import pytest
 
+from tests.support import tiers
+
 # Settings read from the environment open `POOL_DB_PATH` (default ./billiards.db): never
 # the working tree. Tests that build `Settings(...)` give their own `db_path`.
 os.environ["POOL_DB_PATH"] = os.path.join(tempfile.mkdtemp(prefix="billiards-"), "test.db")
@@ -30,3 +32,18 @@ def _warm_engine() -> None:
 
     table = Table.pool("9ft")
     simulate(table, rack("eight_ball", table), Shot(0.0, 9.0))
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    for name, meaning in tiers.MARKERS.items():
+        config.addinivalue_line("markers", f"{name}: {meaning}")
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_runtest_protocol(item: pytest.Item, nextitem: pytest.Item | None):
+    """Tell the helpers which test is running, fixtures' set-up and teardown included."""
+    tiers.entering(item)
+    try:
+        return (yield)
+    finally:
+        tiers.entering(None)

@@ -41,7 +41,7 @@ REPO = Path(__file__).resolve().parent.parent
 STARTUP_TIMEOUT = 90.0  # a cold numba compile of every kernel takes ~25 s on 2 idle cores
 STOP_TIMEOUT = 30.0
 
-pytestmark = pytest.mark.timeout(240)
+pytestmark = [pytest.mark.timeout(240), pytest.mark.slow]
 
 
 # --- the Dockerfile, as the builder reads it ----------------------------------------------

@@ -50,6 +50,7 @@ STARVED_AFTER = 10.0
 STARVED_SHARE = 0.1
 STARVED_CHECK = 0.5  # s between looks at the planners' CPU while a plan is out
 CPU_READ_EVERY = 0.25  # s a reading of the planners' CPU serves every plan waiting
+THREAD_PLAN_NOTE = "planning in a thread"  # in the log when a plan falls back to a thread
 _pools: dict[int, ProcessPoolExecutor] = {}  # workers -> the pool this process shares
 # pool -> (loop time, its planners' CPU seconds then): the last reading, shared
 _cpu_read: weakref.WeakKeyDictionary[ProcessPoolExecutor, tuple[float, float | None]] = (
@@ -172,15 +173,16 @@ async def plan_turn(
             raise
         except BrokenProcessPool:
             if not _stopped:  # else its server stopped it (`_stop`)
-                log.error("a computer planner process died; planning in a thread this time")
+                log.error("a computer planner process died; %s this time", THREAD_PLAN_NOTE)
                 _pools.pop(workers, None)
         else:
             future.cancel()  # if it has not started; a started one ends unread
             log.warning(
                 "the computer's planners got under %.0f %% of a core for %.0f s (the machine"
-                " is busy with other work); planning in a thread this time",
+                " is busy with other work); %s this time",
                 100 * STARVED_SHARE,
                 starved,
+                THREAD_PLAN_NOTE,
             )
             return await loop.run_in_executor(_fallback, plan_data, level, seed, game, seat)
     return await asyncio.to_thread(plan_data, level, seed, game, seat)

@@ -18,12 +18,11 @@ import pytest
 from fastapi.testclient import TestClient
 from starlette.testclient import WebSocketTestSession
 
-from bench.load import THREAD_PLAN_NOTE
 from server.ai import Bot, play_turn
 from server.app import create_app
 from server.codec import to_data
 from server.rooms import SeedSource
-from server.rooms.computer import plan_turn
+from server.rooms.computer import THREAD_PLAN_NOTE, plan_turn
 from server.rules import Game
 from tests.support.games import BREAK_MESSAGE, EIGHT_BALL
 from tests.support.settings import settings_in

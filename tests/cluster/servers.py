@@ -15,6 +15,7 @@ from pathlib import Path
 import httpx
 
 from tests.support.ports import free_port
+from tests.support.tiers import needs
 from tests.support.waiting import until
 
 # Every clock short, the per-client limits off (one test address plays every seat).
@@ -117,6 +118,7 @@ class ServerSet:
     @classmethod
     def start(cls, n: int, redis_url: str, folder: Path, settings: dict[str, object]) -> ServerSet:
         """n processes in parallel, each waited for until it answers /health."""
+        needs("slow")
         merged = {**BASE, **settings}
         if "db_path" not in merged:
             merged["db_path"] = folder / "pool.db"

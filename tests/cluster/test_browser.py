@@ -14,7 +14,13 @@ from tests.support.waiting import until
 
 from .servers import Server, ServerSet
 
-pytestmark = pytest.mark.timeout(360)
+pytestmark = [
+    pytest.mark.timeout(360),
+    pytest.mark.redis,
+    pytest.mark.postgres,
+    pytest.mark.slow,
+    pytest.mark.browser,
+]
 
 
 def spectators(server: Server, room: str) -> int:

@@ -28,7 +28,7 @@ from .servers import Server, ServerSet
 from .sockets import connect, place_cue, recv, send, until
 from .takeover import all_closed, break_and_place, moved, seated
 
-pytestmark = pytest.mark.timeout(360)
+pytestmark = [pytest.mark.timeout(360), pytest.mark.redis, pytest.mark.postgres, pytest.mark.slow]
 THIRD_SHOT = {"type": "shoot", "angle": 2.5, "speed": 2.0}
 FAILOVER_WITHIN = 15.0  # s, from the kill to the room answering on another process
 

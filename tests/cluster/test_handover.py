@@ -20,7 +20,7 @@ from .servers import ServerSet
 from .sockets import connect, recv, send, until
 from .takeover import all_closed, break_and_place, moved, seated
 
-pytestmark = pytest.mark.timeout(360)
+pytestmark = [pytest.mark.timeout(360), pytest.mark.redis, pytest.mark.postgres, pytest.mark.slow]
 
 
 def test_sigterm_hands_the_rooms_over_at_once(servers) -> None:

@@ -10,7 +10,7 @@ from tests.support.games import EIGHT_BALL
 
 from .servers import ServerSet
 
-pytestmark = pytest.mark.timeout(300)
+pytestmark = [pytest.mark.timeout(300), pytest.mark.redis, pytest.mark.postgres, pytest.mark.slow]
 
 
 def test_a_hint_asked_of_another_server_is_planned_by_the_owner(servers) -> None:

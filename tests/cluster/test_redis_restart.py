@@ -18,7 +18,7 @@ from tests.support.redis import RedisServer
 from .servers import Server, ServerSet
 from .sockets import connect, send, until
 
-pytestmark = pytest.mark.timeout(360)
+pytestmark = [pytest.mark.timeout(360), pytest.mark.redis, pytest.mark.postgres, pytest.mark.slow]
 
 
 def listed(server: Server) -> list[str]:

@@ -19,7 +19,7 @@ from tests.support.settings import settings_in
 from .servers import ServerSet
 from .sockets import connect
 
-pytestmark = pytest.mark.timeout(300)
+pytestmark = [pytest.mark.timeout(300), pytest.mark.redis, pytest.mark.postgres, pytest.mark.slow]
 
 
 def test_one_process_names_itself(tmp_path: Path) -> None:

@@ -18,6 +18,7 @@ from server.engine import Shot, Table, rack, simulate
 from tests.support.games import EIGHT_BALL
 from tests.support.live import live_server
 from tests.support.settings import UNLIMITED
+from tests.support.tiers import needs
 
 ARTIFACTS = Path(__file__).resolve().parents[2] / "artifacts"
 CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking"]
@@ -38,6 +39,7 @@ def base_url(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
 def browser() -> Iterator[Browser]:
     """Package scope: Playwright's sync API keeps an event loop running in this thread
     while it is open, which would break `asyncio.run` in the tests that come after."""
+    needs("browser")
     with sync_playwright() as p:
         b = p.chromium.launch(executable_path="/usr/bin/chromium", args=CHROMIUM_ARGS)
         yield b

@@ -6,9 +6,12 @@ from __future__ import annotations
 
 import re
 
+import pytest
 from playwright.sync_api import expect
 
 from .helpers import canvas_digest, wait_for, wait_ready
+
+pytestmark = pytest.mark.browser
 
 
 def test_show_me_a_shot_draws_the_plan_without_playing_it(base_url, new_page, artifacts):

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from urllib.parse import urlparse
 
+import pytest
 from playwright.sync_api import expect
 from websockets.sync.client import connect
 
@@ -15,6 +16,8 @@ from tests.support.messages import JsonSocket, receive_until
 from tests.support.rooms import play_shot, seated_room
 
 from .helpers import wait_for
+
+pytestmark = pytest.mark.browser
 
 SHOTS = [BREAK, EIGHT_BALL_SCRATCH]
 REPLAY_READY = "window.__replay && window.__replay.ready && window.__replay.match"

@@ -5,9 +5,12 @@ from __future__ import annotations
 
 import re
 
+import pytest
 from playwright.sync_api import expect
 
 from .helpers import create_table, lobby_row, table_point, wait_for, wait_ready
+
+pytestmark = pytest.mark.browser
 
 
 def test_lobby_lists_tables_to_join_or_watch_and_remembers_the_name(base_url, new_page):

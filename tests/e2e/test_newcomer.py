@@ -36,6 +36,8 @@ from .conftest import E2E_SETTINGS
 from .helpers import aim_and_shoot, table_point, wait_for, wait_ready
 from .test_history import REPLAY_READY, play_a_short_match
 
+pytestmark = pytest.mark.browser
+
 GRACE = 3.0  # seconds a dropped player keeps the seat here
 CLOCK = 3.0  # the shot clock of the rooms that test it
 

@@ -13,6 +13,8 @@ from playwright.sync_api import Browser, Page, expect
 
 from .helpers import table_point, wait_for, wait_ready
 
+pytestmark = pytest.mark.browser
+
 PHONE = {
     "viewport": {"width": 390, "height": 844},
     "device_scale_factor": 3,

@@ -10,11 +10,14 @@ from __future__ import annotations
 import re
 import time
 
+import pytest
 from playwright.sync_api import expect
 
 from tests.support.games import EIGHT_BALL_BREAK_SAYS
 
 from .helpers import aim_and_shoot, canvas_digest, table_point, wait_for, wait_ready
+
+pytestmark = pytest.mark.browser
 
 
 def test_break_seen_by_both_players_and_a_spectator_then_reload_rejoins(

@@ -6,9 +6,12 @@ from __future__ import annotations
 
 import re
 
+import pytest
 from playwright.sync_api import expect
 
 from .helpers import wait_for, wait_ready
+
+pytestmark = pytest.mark.browser
 
 
 def test_two_browsers_press_play_now_and_land_at_the_same_table(base_url, new_page):

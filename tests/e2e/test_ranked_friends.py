@@ -5,9 +5,12 @@ from __future__ import annotations
 
 import re
 
+import pytest
 from playwright.sync_api import expect
 
 from .helpers import create_table, lobby_row, wait_ready
+
+pytestmark = pytest.mark.browser
 
 
 def test_a_ranked_table_asks_the_friend_to_agree_before_seating_them(base_url, new_page):

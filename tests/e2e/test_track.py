@@ -12,12 +12,15 @@ import json
 import math
 
 import httpx
+import pytest
 from websockets.sync.client import connect as ws_connect
 
 from server.engine import BALL_RADIUS, Table, rack, simulate
 from tests.support.games import BREAK, BREAK_MESSAGE, EIGHT_BALL
 
 from .helpers import READY, wait_for, wait_ready
+
+pytestmark = pytest.mark.browser
 
 MM = 0.001
 

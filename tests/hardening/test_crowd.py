@@ -20,8 +20,8 @@ from websockets.exceptions import ConnectionClosed, InvalidStatus
 
 from server.app import create_app
 from server.config import Settings
-from server.embedded import bound_socket, serving
 from server.rooms import SeedSource
+from tests.support.embedded import bound_socket, serving
 from tests.support.messages import decoded
 
 pytestmark = pytest.mark.timeout(240)

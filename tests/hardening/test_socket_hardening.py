@@ -17,7 +17,7 @@ from websockets.sync.client import connect
 
 from server.app import create_app
 from server.config import Settings
-from server.embedded import bound_socket, serving
+from tests.support.embedded import bound_socket, serving
 
 pytestmark = pytest.mark.timeout(120)
 

@@ -18,7 +18,7 @@ from websockets.asyncio.client import connect
 
 from server.app import create_app
 from server.config import Settings
-from server.embedded import bound_socket, serving
+from tests.support.embedded import bound_socket, serving
 from tests.support.waiting import until
 
 SOCKETS = 20

@@ -11,7 +11,7 @@ import pytest
 SERVER = Path(__file__).resolve().parents[2] / "server"
 
 # What each layer may import besides itself. `codec` and `config` are leaves everyone may
-# use (`priority` too, for the rooms); `app`, `__main__` and `embedded` wire the layers
+# use (`priority` too, for the rooms); `app` and `__main__` wire the layers
 # together and may import anything.
 ALLOWED: dict[str, set[str]] = {
     "codec": set(),
@@ -31,7 +31,7 @@ ALLOWED: dict[str, set[str]] = {
     },
     "players": set(),  # pure: profiles, Glicko-2, the Play now queue; used by api
 }
-WIRING = {"app", "__main__", "embedded", "__init__"}
+WIRING = {"app", "__main__", "__init__"}
 
 
 def module_name(path: Path) -> str:
@@ -153,3 +153,34 @@ def test_relative_imports_resolve_and_type_checking_imports_are_left_out():
     assert "server.protocol" in observer and "server.engine" in observer
     assert "server.rooms.room" not in observer  # under `if TYPE_CHECKING:`
     assert "server.rooms.room" in imports_of(SERVER / "rooms" / "live.py")  # `from .room`
+
+
+TESTS = SERVER.parent / "tests"
+
+
+def bench_imports(path: Path) -> list[str]:
+    """The `bench` modules `path` imports (relative imports stay inside its package)."""
+    found = []
+    for node in ast.walk(ast.parse(path.read_text())):
+        names = []
+        if isinstance(node, ast.Import):
+            names = [a.name for a in node.names]
+        elif isinstance(node, ast.ImportFrom) and not node.level:
+            names = [node.module or ""]
+        found += [n for n in names if n == "bench" or n.startswith("bench.")]
+    return found
+
+
+def test_the_product_tests_never_import_the_benchmarks():
+    """`bench/` is the lab (its own tests live in `bench/tests`); a product test that read
+    a constant from a benchmark would break when the benchmark changes."""
+    importing = {
+        str(p.relative_to(TESTS)): found for p in TESTS.rglob("*.py") if (found := bench_imports(p))
+    }
+    assert importing == {}
+
+
+def test_the_bench_check_sees_an_import(tmp_path: Path):
+    probe = tmp_path / "probe.py"
+    probe.write_text("import bench.load\nfrom bench import ai\nfrom .bench import x\n")
+    assert bench_imports(probe) == ["bench.load", "bench"]

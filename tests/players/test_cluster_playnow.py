@@ -22,7 +22,7 @@ from tests.support.games import BREAK, EIGHT_BALL, shoot_message
 from tests.support.postgres import PostgresServer, postgres  # noqa: F401  (a fixture)
 from tests.support.redis import RedisServer, redis  # noqa: F401  (a fixture)
 
-pytestmark = pytest.mark.timeout(180)
+pytestmark = [pytest.mark.timeout(180), pytest.mark.redis, pytest.mark.postgres, pytest.mark.slow]
 COOKIE = "pool_player"
 
 

@@ -17,7 +17,7 @@ from tests.support.postgres import PostgresServer, postgres  # noqa: F401  (the 
 NOW = 1_795_700_416.3912654
 
 
-@pytest.fixture(params=["sqlite", "postgresql"])
+@pytest.fixture(params=["sqlite", pytest.param("postgresql", marks=pytest.mark.postgres)])
 def db(request: pytest.FixtureRequest, tmp_path: Path) -> Iterator[Database]:
     if request.param == "sqlite":
         target: str | Path = tmp_path / "billiards.db"

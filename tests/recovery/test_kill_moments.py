@@ -24,7 +24,7 @@ from tests.support.ports import free_port
 from tests.support.process import server_process
 from tests.support.rooms import seated_room
 
-pytestmark = pytest.mark.timeout(600)
+pytestmark = [pytest.mark.timeout(600), pytest.mark.slow]
 MOMENTS = 20
 FREE_SPOTS = ((0.5, 0.4), (0.3, 1.0), (0.45, 0.9), (0.2, 0.2), (0.55, 0.6), (0.1, 0.6))
 

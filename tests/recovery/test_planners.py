@@ -20,7 +20,7 @@ from tests.support.ports import free_port
 from tests.support.process import server_process
 from tests.support.waiting import until
 
-pytestmark = pytest.mark.timeout(240)
+pytestmark = [pytest.mark.timeout(240), pytest.mark.slow]
 
 
 def parent_of(pid: int) -> int | None:

@@ -44,8 +44,7 @@ def test_game_never_tests_its_kind() -> None:
         if isinstance(node, ast.Compare):
             names = [node.left, *node.comparators]
             assert not any(
-                isinstance(n, ast.Attribute | ast.Name)
-                and getattr(n, "attr", None) == "kind"
+                (isinstance(n, ast.Attribute | ast.Name) and getattr(n, "attr", None) == "kind")
                 or getattr(n, "id", None) == "kind"
                 for n in names
             ), ast.unparse(node)

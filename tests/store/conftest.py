@@ -12,7 +12,7 @@ from server.store import Database
 from tests.support.postgres import PostgresServer, postgres  # noqa: F401  (the fixture)
 
 
-@pytest.fixture(params=["sqlite", "postgresql"])
+@pytest.fixture(params=["sqlite", pytest.param("postgresql", marks=pytest.mark.postgres)])
 def target(request: pytest.FixtureRequest, tmp_path: Path) -> str | Path:
     """Where a test's store is: a SQLite path or a PostgreSQL URL (an empty database)."""
     if request.param == "sqlite":

@@ -13,7 +13,7 @@ from sqlalchemy.exc import OperationalError
 from server.store import Database, Repository
 from tests.support.postgres import PostgresServer, running_postgres
 
-pytestmark = pytest.mark.timeout(120)
+pytestmark = [pytest.mark.timeout(120), pytest.mark.postgres]
 TABLE = [2.54, 1.27, 0.028575, 0.114, 0.127]
 
 

@@ -10,7 +10,7 @@ from typing import Any
 import httpx
 
 from server.config import Settings
-from server.embedded import bound_socket, serving
+from tests.support.embedded import bound_socket, serving
 
 from .games import EIGHT_BALL
 from .messages import decoded

@@ -26,6 +26,8 @@ from pathlib import Path
 
 import pytest
 
+from tests.support.tiers import needs
+
 from .ports import free_port
 
 USER = "postgres"
@@ -123,6 +125,7 @@ class PostgresServer:
 @contextlib.contextmanager
 def running_postgres(durable: bool = False) -> Iterator[PostgresServer]:
     """A started private server, stopped and removed on leaving."""
+    needs("postgres")
     server = PostgresServer(durable=durable)
     try:
         server.start()

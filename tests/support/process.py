@@ -12,6 +12,8 @@ from pathlib import Path
 
 import httpx
 
+from tests.support.tiers import needs
+
 from .games import EIGHT_BALL
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -22,6 +24,7 @@ def server_process(port: int, db: Path, **env: str) -> Iterator[subprocess.Popen
     """`python -m server` on `port` over the database `db`, every rack of a fixed seed (more
     settings in `env`); waits until it answers. The caller stops it (a signal) before
     leaving; one still running is killed."""
+    needs("slow")
     environment = {
         **os.environ,
         "POOL_DB_PATH": str(db),

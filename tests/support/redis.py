@@ -16,6 +16,8 @@ from pathlib import Path
 
 import pytest
 
+from tests.support.tiers import needs
+
 from .ports import free_port
 
 REDIS_SERVER = "redis-server"
@@ -80,6 +82,7 @@ class RedisServer:
 @contextmanager
 def redis_server() -> Iterator[RedisServer]:
     """A started private redis-server, stopped and removed on leaving."""
+    needs("redis")
     with tempfile.TemporaryDirectory(prefix="pool-redis-") as folder:
         server = RedisServer(Path(folder))
         server.start()
