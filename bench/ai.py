@@ -111,7 +111,7 @@ class Greedy:
     def execute(self, shot: Shot, rng: NormalSource) -> Shot:
         return self._arm.execute(shot, rng)
 
-    def plan(self, game: Game, seat: int) -> Turn:
+    def plan(self, game: Game, seat: int) -> Turn:  # noqa: ARG002 (`Bot.plan`'s signature)
         if game.decision is not None:
             return Turn(decision=game.decision.options[0])
         table, balls = game.table, game.balls
@@ -675,7 +675,7 @@ def calibrate(configs: int, seed: int, fit: bool = False) -> None:
         ("cut deg", 2, (0, 15, 30, 45, 60, 80)),
     ):
         x = np.degrees(data[:, col]) if col == 2 else data[:, col]
-        for lo, hi in zip(edges, edges[1:], strict=False):
+        for lo, hi in itertools.pairwise(edges):
             m = (x >= lo) & (x < hi)
             if m.any():
                 print(
@@ -888,7 +888,7 @@ def main(argv: list[str] | None = None) -> int:
         loop_report(args.rooms, args.workers, args.seconds, args.seed)
     if "ladder" in parts:
         print(f"the ladder ({args.kind}, each level against the one below):")
-        for weak, strong in zip(LEVELS, LEVELS[1:], strict=False):
+        for weak, strong in itertools.pairwise(LEVELS):
             if strong not in args.steps:
                 continue
             won = match(args.kind, strong, weak, args.games, args.seed, args.jobs, args.table)

@@ -15,6 +15,7 @@ logistic fits of "cleared" on those parts, each fitted on the racks of odd seeds
 from __future__ import annotations
 
 import argparse
+import itertools
 import sys
 from dataclasses import dataclass
 
@@ -117,11 +118,11 @@ def report(kept: list[Kept]) -> None:
     print(f"kept tables: {len(kept)}{share}")
     print("cleared from a kept table, by balls left to pot (the 8 counted) and the best next")
     print("pot's chance q (tables: share cleared):")
-    heads = [f"q {lo:.2f}-{min(hi, 1.0):.2f}" for lo, hi in zip(BANDS, BANDS[1:], strict=False)]
+    heads = [f"q {lo:.2f}-{min(hi, 1.0):.2f}" for lo, hi in itertools.pairwise(BANDS)]
     print(f"  {'left':>5}  " + "".join(f"{h:>16}" for h in heads))
     for lo, hi in LEFT_ROWS:
         cells = []
-        for a, b in zip(BANDS, BANDS[1:], strict=False):
+        for a, b in itertools.pairwise(BANDS):
             inside = [k for k in kept if lo <= k.left <= hi and a <= k.q < b]
             rate = sum(k.cleared for k in inside) / len(inside) if inside else 0.0
             cells.append(f"{len(inside):>6}: {100 * rate:3.0f} %" if inside else f"{'-':>16}")

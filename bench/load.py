@@ -126,7 +126,7 @@ def percentile(values: list[float], p: float) -> float:
     if not values:
         return math.nan
     ordered = sorted(values)
-    return ordered[min(len(ordered) - 1, int(round(p / 100 * (len(ordered) - 1))))]
+    return ordered[min(len(ordered) - 1, round(p / 100 * (len(ordered) - 1)))]
 
 
 # ---- the server --------------------------------------------------------------------------
@@ -323,7 +323,7 @@ async def client(
                         pending.cancel()
                     if todo is not None:
                         pending = asyncio.ensure_future(
-                            act(ws, todo, bots, think * rng.uniform(0.5, 1.5), stats)
+                            act(ws, todo, bots, think * rng.uniform(0.5, 1.5))
                         )
                 elif kind == "shot_result" and seat is None and message["shot"] in shown:
                     before, duration = shown.pop(message["shot"])
@@ -379,7 +379,7 @@ def action_place(rng: random.Random) -> dict:
     }
 
 
-async def act(ws, todo: dict, bots: RoomBots, delay: float, stats: Stats) -> None:
+async def act(ws, todo: dict, bots: RoomBots, delay: float) -> None:
     await asyncio.sleep(delay)
     if todo["type"] == "shoot":
         bots.last_shoot = time.perf_counter()

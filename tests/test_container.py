@@ -305,7 +305,7 @@ def http(method: str, url: str, body: dict | None = None) -> tuple[int, bytes]:
 def swap_option(argv: list[str], option: str, value: str) -> list[str]:
     assert option in argv, f"the CMD has no {option}: {argv}"
     i = argv.index(option)
-    return argv[: i + 1] + [value] + argv[i + 2 :]
+    return [*argv[: i + 1], value, *argv[i + 2 :]]
 
 
 @pytest.fixture

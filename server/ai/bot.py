@@ -140,7 +140,7 @@ class Bot:
         if game.decision is not None:
             if game.decision.seat != seat:
                 raise ValueError("the pending decision is not this seat's")
-            return Turn(decision=self._decide(game, seat))
+            return Turn(decision=self._decide(game))
         if game.turn != seat:
             raise ValueError("it is not this seat's turn")
         search = self._search(game, seat)
@@ -231,25 +231,12 @@ class Bot:
         from any of them, those in turn with spots for a safety (`_safety_spots`)."""
         table = game.table
         r = table.ball_radius
-        pk = pockets_of(table)
-        targets = search.targets(search.pos)
         on = set(balls.on_table_ids())
+        targets = search.targets(search.pos)
         spots: list[tuple[float, float]] = []
         for t in targets:
-            if t not in on:
-                continue
-            ox, oy = balls.position_of(t)
-            for p in range(len(pk.aims)):
-                ux, uy = pk.aims[p][0] - ox, pk.aims[p][1] - oy
-                n = math.hypot(ux, uy)
-                if n < 1e-9:
-                    continue
-                ux, uy = ux / n, uy / n
-                for a in HAND_ANGLES:
-                    ca, sa = math.cos(a), math.sin(a)
-                    bx, by = -(ux * ca - uy * sa), -(ux * sa + uy * ca)
-                    for d in HAND_DISTANCES:
-                        spots.append((ox - 2 * r * ux + bx * d, oy - 2 * r * uy + by * d))
+            if t in on:
+                spots += _pot_line_spots(table, balls.position_of(t))
         xs = np.linspace(2 * r, table.length - 2 * r, 9)
         ys = np.linspace(2 * r, table.width - 2 * r, 5)
         if area == BEHIND_HEAD_STRING:
@@ -354,7 +341,7 @@ class Bot:
         return chosen[0] if chosen else None
 
     # --- decisions --------------------------------------------------------------------
-    def _decide(self, game: Game, seat: int) -> str:
+    def _decide(self, game: Game) -> str:
         decision = game.decision
         assert decision is not None
         options = decision.options
@@ -370,3 +357,22 @@ class Bot:
         if "shoot" in options and "pass" in options:
             return "shoot" if q >= ACCEPT_ABOVE else "pass"
         return options[0]
+
+
+def _pot_line_spots(table: Table, ball: tuple[float, float]) -> list[tuple[float, float]]:
+    """Cue-ball spots behind `ball` on its straight-in and gentle cut lines to each pocket."""
+    r = table.ball_radius
+    ox, oy = ball
+    spots = []
+    for aim_x, aim_y in pockets_of(table).aims:
+        ux, uy = aim_x - ox, aim_y - oy
+        n = math.hypot(ux, uy)
+        if n < 1e-9:
+            continue
+        ux, uy = ux / n, uy / n
+        for a in HAND_ANGLES:
+            ca, sa = math.cos(a), math.sin(a)
+            bx, by = -(ux * ca - uy * sa), -(ux * sa + uy * ca)
+            for d in HAND_DISTANCES:
+                spots.append((ox - 2 * r * ux + bx * d, oy - 2 * r * uy + by * d))
+    return spots

@@ -10,7 +10,7 @@ the same); between games the deviation grows by the paper's step 6 once per
 from __future__ import annotations
 
 from collections.abc import Iterable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 from .glicko2 import Rating, idle, rate
 
@@ -39,7 +39,7 @@ class KindRating:
 
     player_id: str
     kind: str
-    rating: Rating = Rating()
+    rating: Rating = field(default_factory=Rating)
     games: int = 0
     wins: int = 0
     rated_at: float | None = None

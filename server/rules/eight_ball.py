@@ -8,12 +8,15 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 
+from typing_extensions import override
+
 from . import fouls
 from .clock import time_foul
 from .outcome import ANYWHERE, BEHIND_HEAD_STRING, Decision
 from .position import Position
 from .ruling import Ruling
 from .shotfacts import ShotFacts
+from .strategy import GameRules
 from .words import pocket
 
 EIGHT = 8
@@ -175,8 +178,8 @@ def _eight_dropped(pos: Position, facts: ShotFacts, r: Ruling, was_on_eight: boo
     return r
 
 
-class EightBallRules:
-    """8-ball as a `kinds.GameRules` strategy."""
+class EightBallRules(GameRules):
+    """8-ball as a `GameRules` strategy."""
 
     kind = "eight_ball"
     seats = 2
@@ -186,28 +189,35 @@ class EightBallRules:
     rerack_at_will = False
     spot_choice = (EIGHT,)
 
+    @override
     def legal_targets(self, pos: Position) -> list[int]:
         return legal_targets(pos.on_table, pos.groups, pos.turn)
 
+    @override
     def balls_left(self, pos: Position) -> list[list[int]] | None:
         """Per seat, its group's balls on the table, once the groups are decided."""
         if not pos.groups:
             return None
         return [group_left(pos.on_table, group) for group in pos.groups]
 
+    @override
     def requires_call(self, pos: Position) -> bool:
         """The shooter is on the 8 and must call its pocket (never on the break)."""
         return not pos.breaking and on_eight(pos.on_table, pos.groups, pos.turn)
 
+    @override
     def judge(self, pos: Position, facts: ShotFacts) -> Ruling:
         return judge(pos, facts)
 
+    @override
     def timeout(self, pos: Position) -> Ruling:
         return time_foul(pos)
 
+    @override
     def count_fouls(self, fouls_in_row: Sequence[int], seat: int, fouled: bool) -> list[int]:
         """WPA 8-ball does not count fouls in a row: the count stays as it is."""
         return list(fouls_in_row)
 
+    @override
     def foul_warning(self, fouls_in_row: Sequence[int], seat: int, name: str) -> str | None:
         return None

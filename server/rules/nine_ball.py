@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+from typing_extensions import override
+
 from server.engine import CUE
 
 from . import fouls
@@ -17,6 +19,7 @@ from .outcome import ANYWHERE, BEHIND_HEAD_STRING, Decision
 from .position import Position
 from .ruling import Ruling
 from .shotfacts import ShotFacts
+from .strategy import GameRules
 from .words import ball
 
 NINE = 9
@@ -97,8 +100,8 @@ def lose_on_last_foul(pos: Position, r: Ruling) -> Ruling:
     return r
 
 
-class NineBallRules:
-    """9-ball as a `kinds.GameRules` strategy."""
+class NineBallRules(GameRules):
+    """9-ball as a `GameRules` strategy."""
 
     kind = "nine_ball"
     seats = 2
@@ -108,6 +111,7 @@ class NineBallRules:
     rerack_at_will = False
     spot_choice: tuple[int, ...] = ()
 
+    @override
     def legal_targets(self, pos: Position) -> list[int]:
         """The lowest ball; on a push out, any ball."""
         if pos.push_out_declared:
@@ -115,29 +119,35 @@ class NineBallRules:
         lowest = lowest_ball(pos.on_table)
         return [lowest] if lowest is not None else []
 
+    @override
     def balls_left(self, pos: Position) -> list[list[int]] | None:
         """Both seats play the same balls: every object ball on the table."""
         left = pos.object_balls
         return [left, list(left)]
 
+    @override
     def requires_call(self, pos: Position) -> bool:
         return False
 
+    @override
     def judge(self, pos: Position, facts: ShotFacts) -> Ruling:
         judged = judge_push_out if pos.push_out_declared else judge_shot
         return lose_on_last_foul(pos, judged(pos, facts))
 
+    @override
     def timeout(self, pos: Position) -> Ruling:
         """A foul; on the break it passes the break and cannot lose the game."""
         r = time_foul(pos)
         return r if pos.breaking else lose_on_last_foul(pos, r)
 
+    @override
     def count_fouls(self, fouls_in_row: Sequence[int], seat: int, fouled: bool) -> list[int]:
         """A foul adds one to the shooter's count; a legal shot resets it."""
         counts = list(fouls_in_row)
         counts[seat] = counts[seat] + 1 if fouled else 0
         return counts
 
+    @override
     def foul_warning(self, fouls_in_row: Sequence[int], seat: int, name: str) -> str | None:
         if fouls_in_row[seat] == FOULS_TO_LOSE - 1:
             return f"{name} is on two fouls: a third foul in a row loses."

@@ -4,14 +4,17 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+from typing_extensions import override
+
 from .outcome import ANYWHERE
 from .position import Position
 from .ruling import Ruling
 from .shotfacts import ShotFacts
+from .strategy import GameRules
 
 
-class PracticeRules:
-    """Practice as a `kinds.GameRules` strategy: every shot is legal and the player stays."""
+class PracticeRules(GameRules):
+    """Practice as a `GameRules` strategy: every shot is legal and the player stays."""
 
     kind = "practice"
     seats = 1
@@ -21,16 +24,20 @@ class PracticeRules:
     rerack_at_will = True
     spot_choice: tuple[int, ...] = ()
 
+    @override
     def legal_targets(self, pos: Position) -> list[int]:
         """Empty: anything goes."""
         return []
 
+    @override
     def balls_left(self, pos: Position) -> list[list[int]] | None:
         return None
 
+    @override
     def requires_call(self, pos: Position) -> bool:
         return False
 
+    @override
     def judge(self, pos: Position, facts: ShotFacts) -> Ruling:
         """No fouls; a pocketed cue ball comes back as ball in hand."""
         r = Ruling(continues=True, ball_in_hand=ANYWHERE)
@@ -40,12 +47,15 @@ class PracticeRules:
             r.notes.append("Table cleared. Rerack to play again.")
         return r
 
+    @override
     def timeout(self, pos: Position) -> Ruling:
         """Nothing happens but the message: there is no one to pass the turn to."""
         return Ruling(continues=True, ball_in_hand=ANYWHERE, notes=["Time ran out."])
 
+    @override
     def count_fouls(self, fouls_in_row: Sequence[int], seat: int, fouled: bool) -> list[int]:
         return list(fouls_in_row)
 
+    @override
     def foul_warning(self, fouls_in_row: Sequence[int], seat: int, name: str) -> str | None:
         return None

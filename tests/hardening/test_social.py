@@ -145,7 +145,7 @@ def test_social_messages_never_cost_a_player_the_game_or_the_socket():
         f"state {i}" for i in range(0, 1000, 100)
     ]
     assert sum(t.startswith("chat") for t in queued) <= 16 // 4
-    game_only = Connection(lambda text: asyncio.sleep(0), seat=0, name="Ana", limit=4)
+    game_only = Connection(lambda _text: asyncio.sleep(0), seat=0, name="Ana", limit=4)
     for i in range(5):
         game_only.push(f"state {i}")
     assert game_only.close_code == CLOSE_TOO_SLOW  # only the game's own backlog closes

@@ -46,7 +46,8 @@ async def come_and_go(url: str) -> None:
             await ws.recv()  # the room's `state`: the server is done with the handshake
 
 
-def test_closed_websockets_leave_no_http_protocol_behind(tmp_path: Path, collector_off: None):
+@pytest.mark.usefixtures("collector_off")
+def test_closed_websockets_leave_no_http_protocol_behind(tmp_path: Path):
     settings = Settings(web_dir=tmp_path, db_path=tmp_path / "pool.db")
     with serving(create_app(settings), settings, bound_socket()) as address:
         request = Request(

@@ -3,6 +3,8 @@ leaderboard order and the computer's levels."""
 
 from __future__ import annotations
 
+import itertools
+
 import pytest
 
 from server.ai import Bot
@@ -81,4 +83,4 @@ def test_the_level_gaps_come_from_the_measured_win_shares(share: float, gap: flo
 
     assert 400 * math.log10(share / (1 - share)) == pytest.approx(gap, abs=1)
     steps = list(COMPUTER_RATINGS.values())
-    assert round(gap) in [round(b - a) for a, b in zip(steps, steps[1:], strict=False)]
+    assert round(gap) in [round(b - a) for a, b in itertools.pairwise(steps)]

@@ -72,7 +72,7 @@ def fuzz_message(rng: random.Random) -> str | bytes:
             ]
         )
     if pick in (2, 3, 4):
-        body = {"type": rng.choice(TYPES + ["warp", "", "SHOOT", None, 3])}
+        body = {"type": rng.choice([*TYPES, "warp", "", "SHOOT", None, 3])}
         for _ in range(rng.randrange(4)):
             body[
                 rng.choice(

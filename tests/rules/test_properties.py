@@ -22,7 +22,7 @@ def random_shot(data, game: Game):
     some balls (the cue ball too) dropped in random pockets; the 8 and the 9 drop less
     often, so that games last long enough to reach their later rules."""
     objects = [b for b in game.balls.on_table_ids() if b != 0]
-    on = objects + [0] if 0 in game.balls.on_table_ids() else objects  # cue last: rarer
+    on = [*objects, 0] if 0 in game.balls.on_table_ids() else objects  # cue last: rarer
     legal = game.legal_targets() or objects
     events = []
     choice = data.draw(st.integers(0, 9))  # hypothesis favours 0: make it the legal case

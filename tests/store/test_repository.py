@@ -177,7 +177,7 @@ def test_queued_writes_share_a_transaction_yet_fail_alone(target: str | Path) ->
     refused or broken write fails alone, the others are stored, in order."""
     db = Database(target, batch=64)
     gate = threading.Event()
-    db.submit(lambda r: gate.wait(30))  # holds the store thread while the writes queue
+    db.submit(lambda _r: gate.wait(30))  # holds the store thread while the writes queue
     shot = {"angle": 0.0, "speed": 1.0, "tip": [0.0, 0.0]}
     futures = [
         db.write(lambda r: r.start_match(1, "room", "practice", ["Ana"], 1, epoch=2), "start"),

@@ -1,0 +1,80 @@
+"""The interface of a kind of game's rules: everything `Game` would otherwise ask its `kind`
+about. The strategies subclass it, so a type checker holds each to its signatures."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Protocol
+
+from .position import Position
+from .ruling import Ruling
+from .shotfacts import ShotFacts
+
+
+class GameRules(Protocol):
+    """The rules of one kind of game. Stateless: every answer is a function of its
+    arguments, so one instance serves every game of its kind."""
+
+    @property
+    def kind(self) -> str:
+        """The kind string this strategy is registered under (`Game.kind`)."""
+        ...
+
+    @property
+    def seats(self) -> int:
+        """How many players the game takes."""
+        ...
+
+    @property
+    def rack(self) -> str:
+        """The engine's rack to set up (`server.engine.rack`)."""
+        ...
+
+    @property
+    def breaks(self) -> bool:
+        """A rack starts with a break (judged by the break rules)."""
+        ...
+
+    @property
+    def opening_ball_in_hand(self) -> str:
+        """Where the cue ball may go for a rack's first shot."""
+        ...
+
+    @property
+    def rerack_at_will(self) -> bool:
+        """The player may re-rack whenever they like (`Game.rerack`)."""
+        ...
+
+    @property
+    def spot_choice(self) -> tuple[int, ...]:
+        """The balls the decision option "spot" puts back on the table."""
+        ...
+
+    def legal_targets(self, pos: Position) -> list[int]:
+        """Balls the shooter may hit first now (empty: any ball)."""
+        ...
+
+    def balls_left(self, pos: Position) -> list[list[int]] | None:
+        """Per seat, the balls that seat still has to pocket; None when not shown."""
+        ...
+
+    def requires_call(self, pos: Position) -> bool:
+        """The shooter must call a pocket before shooting."""
+        ...
+
+    def judge(self, pos: Position, facts: ShotFacts) -> Ruling:
+        """The ruling on a shot played by `pos.turn` from `pos`; a push out is judged as
+        one when `pos.push_out_declared`, and a ruling's `push_out_next` offers the next."""
+        ...
+
+    def timeout(self, pos: Position) -> Ruling:
+        """The ruling when the shot clock runs out on `pos.turn`."""
+        ...
+
+    def count_fouls(self, fouls_in_row: Sequence[int], seat: int, fouled: bool) -> list[int]:
+        """Fouls in a row per seat once `seat` has played a shot, fouled or not."""
+        ...
+
+    def foul_warning(self, fouls_in_row: Sequence[int], seat: int, name: str) -> str | None:
+        """A sentence warning `seat` (called `name`) about its count, if it needs one."""
+        ...
