@@ -25,9 +25,9 @@ a foul, the 8 lost).
 `--noise` plays the runouts' strokes with only some parts of the execution error (the
 plans still assume the level's own): `none` for exact strokes, `aim` or `aim,speed` to
 see what each part costs, `aim,speed,tip,squirt` with the tip's error turning the cue
-ball's line as well (an arm that does not allow for the squirt of the tip it strikes;
-docs/ai-rounds.md, "Squirt round"), `ball-speed` with the speed's sigma on the ball's speed, not
-the cue's (docs/ai-rounds.md, "Cue-speed round"). It says what the racks are lost to.
+ball's line as well (an arm that does not allow for the squirt of the tip it strikes),
+`ball-speed` with the speed's sigma on the ball's speed, not the cue's (FastFiz's is the
+cue's; docs/ai.md, "Levels"). It says what the racks are lost to.
 
 `--table` plays every rack and game on an 8ft or 7ft table instead of the rooms' 9ft, or
 on `fastfiz`, the tournaments' own table in our engine (2.236 x 1.116 m, and pockets
@@ -204,7 +204,7 @@ class Arm:
 
 # The runouts' break is played with the arm the layouts were first measured with (the
 # tip's error squirting the cue ball, the speed's sigma on the ball's speed): a break is
-# chaotic, and so a seed keeps the layout that earlier runs (docs/ai-rounds.md) measured, and
+# chaotic, and so a seed keeps the layout every figure in docs/ai.md was measured on, and
 # runs of any version compare seed by seed.
 BREAK_NOISE = (*FULL_NOISE, "squirt", "ball-speed")
 

@@ -91,7 +91,7 @@ def break_once(kind: str, seed: int, stroke: BreakStroke, level: str) -> Tally:
 def spread(game: Game) -> float:
     """How open the break left the rack (`open_share` of the object balls on the table,
     the game ball left out), shown beside what the stroke keeps: a break is chosen on both,
-    and a more open rack alone cleared no more runouts (docs/ai-rounds.md, "Spread round")."""
+    and a more open rack alone cleared no more runouts (docs/ai.md, "Tried and rejected")."""
     game_ball = EIGHT if game.rules.kind == "eight_ball" else NINE
     balls = [b for b in game.position().object_balls if b != game_ball]
     return open_share(game.table, game.balls, balls)

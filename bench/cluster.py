@@ -1,5 +1,5 @@
 """Cluster benchmark: the same rooms of bot players on one process, then on three processes
-sharing a private Redis (cluster mode), on this machine.
+sharing a private Redis (cluster mode), all on the local host.
 
     .venv/bin/python -m bench.cluster --rooms 30 --seconds 20 --runs 3 [--store postgres]
     .venv/bin/python -m bench.cluster --handover kill --rooms 30 --runs 3   # or drain

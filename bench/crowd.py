@@ -122,7 +122,7 @@ class Players:
 
 def fan_address(i: int) -> tuple[str, int]:
     """The `i`th member of a crowd connects from a loopback address of its own (127.0.x.y
-    all reach this machine), as the people of a real crowd would; the server's quotas are
+    all reach the local host), as the people of a real crowd would; the server's quotas are
     per address."""
     return (f"127.0.{1 + i // 250}.{1 + i % 250}", 0)
 
@@ -216,7 +216,7 @@ async def measure(flood: str, base: str, port: int, seconds: float, warmup: floa
         for i, t in enumerate(tokens)
     ]
     # The flood runs in a process of its own, so its clients do not slow the players'
-    # measurement down (this machine has two cores: server, players and flood share them),
+    # measurement down (server, players and flood share the host's cores),
     # on CPU time nobody else wants (`server.priority`).
     flooder = None
     if flood != "quiet":

@@ -2,7 +2,7 @@
 
 Used where a process must never slow the rooms' event loop and shot threads: the
 computer's planners, and a benchmark's flood standing in for clients on other machines.
-`nice 19` was not enough on this 2-core machine: a niced process still makes its core look
+`nice 19` was not enough on 2 cores: a niced process still makes its core look
 busy, so the kernel woke the rooms' shot threads on the event loop's core, where they waited
 behind the loop. A core running only idle-class work counts as free. The price: while
 work at normal priority keeps every core busy, an idle-class process gets no CPU at all,

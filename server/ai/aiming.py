@@ -80,12 +80,12 @@ def perturb(
     a 0.125-degree line); with the engine's squirt on top, the pro's 0.5 mm tip error
     turned the line by about 0.075 degrees more. `squirt=True` lets the tip's error turn
     the line too: the search plans so, a little more error than its arm has, which
-    cleared more runouts than planning with the arm's own (docs/ai-rounds.md, "Squirt round").
+    cleared more runouts than planning with the arm's own (docs/ai.md, "Levels").
 
     The speed sigma is the cue's, as FastFiz's is (`strike_gain`): the ball's speed
     strays by about 1.3-1.6 times it. `cue_speed=False` puts the sigma on the ball's
-    speed itself (the benchmark's break, so that its layouts stay those measured
-    before; docs/ai-rounds.md, "Cue-speed round")."""
+    speed itself (the benchmark's break, so that its layouts stay the seeds' layouts
+    that every runout figure in docs/ai.md was measured on)."""
     side, height = shot.tip
     gain = strike_gain(side, height) if cue_speed else 1.0
     played = clamp_shot(
@@ -117,13 +117,13 @@ def aim_for_throw(
     collision (the friction between the balls turns the object ball 1-3 degrees towards
     the cue ball's path on a slow cut, in the engine as on a real table); under the pro's
     aim error that alone missed a 30-degree cut of 0.8 m a third of the time
-    (docs/ai-rounds.md, "Throw round"). A secant of two engine shots finds the aim; speed
+    (`tests/ai/test_bot.py`). A secant of two engine shots finds the aim; speed
     and tip stay.
 
     The centre is the middle of the mouth, or with `window` the middle of the directions
     in which the ball drops: a ball that comes at a corner pocket along a cushion drops
     over a range of directions that lies mostly to one side of the mouth's middle
-    (docs/ai-rounds.md, "Window round")."""
+    (docs/ai.md, item 3 of "How the search works")."""
     ox, oy = balls.position_of(target)
     ax, ay = pockets_of(table).aims[pocket]
     want = math.atan2(ay - oy, ax - ox)

@@ -45,13 +45,13 @@ GEOMETRIC = ChanceModel()  # the plain ghost-ball estimate (the lower levels pla
 # Fitted (maximum likelihood over a grid, `python -m bench.ai --only calibrate --configs 3000
 # --seed 11 --fit`) to 3,000 random pots of one ball played with the pro's FastFiz noise,
 # aimed for the throw as the search aims (at the pocket's window, as the pro aims: refitted
-# so, it gives the same point, docs/ai-rounds.md "Late-leaves round"), 30 noisy strokes each. The
+# so, it gives the same point), 30 noisy strokes each. The
 # plain model ignores that a long object-ball distance costs far more than a long cue-ball
 # one. The earlier fit (to pots aimed at the ghost ball) had a floor of 1.4 degrees,
 # several times what the object ball strays by from a cue ball 0.2 m away (0.35-0.53
 # degrees in the engine): it made a long object-ball distance hard however close the cue
-# ball was, and ordered the likely pots worse than the plain model did (docs/ai-rounds.md,
-# "Chance round").
+# ball was, and ordered the likely pots worse than the plain model did (docs/ai.md, item 7
+# of "How the search works").
 FASTFIZ = ChanceModel(aim_scale=2.0, floor=0.015, cut=0.04, jaw=0.032, side=0.02)
 FASTFIZ_TIP_MM = 0.5
 

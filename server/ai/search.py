@@ -62,15 +62,15 @@ FINE_SPEED_FACTORS = (1.1, 1.4, 1.8, 2.4, 3.0, 3.8, 4.6)
 FINE_TIPS = (*TIPS, (0.0, 0.18), (0.0, -0.18), (0.3, -0.15), (-0.3, -0.15))
 # Late in a rack (this many balls or fewer to pot before the game ball, and few pots on)
 # the next-shot search of a level with `late_strokes` tries more strokes on each pot: the
-# position for the last balls is where the racks are lost (docs/ai-rounds.md, "End-of-rack
-# round"), and there the budget goes partly unspent. Its speeds reach softer and firmer
-# than the four it had first, which cleared fewer racks (docs/ai-rounds.md, "Late-leaves round").
+# position for the last balls is where the racks are lost (docs/ai.md, "Current figures"),
+# and there the budget goes partly unspent. Its six speeds reach softer and firmer than
+# four (1.25-3.0) did: 18 more racks of 600 cleared.
 LATE_BALLS = 2
 LATE_SPEED_FACTORS = (1.1, 1.4, 1.8, 2.4, 3.0, 3.8)
 LATE_LOOK_SIMS = LOOK_PAIRS * len(LATE_SPEED_FACTORS) * len(TIPS)  # what that search may take
 # Safeties: hits on a legal ball from full to thin (a fraction of the widest offset that
 # still hits it), soft to firm, with centre ball, draw and follow. Where the cue ball stops
-# is what hides it, so draw and follow (docs/ai-rounds.md, "Safety round").
+# is what hides it, so draw and follow.
 SAFETY_FRACTIONS = (-0.9, -0.6, -0.3, 0.0, 0.3, 0.6, 0.9)
 SAFETY_SPEEDS = (0.7, 1.1, 1.6, 2.6)
 SAFETY_HEIGHTS = (0.0, -0.35, 0.35)
@@ -280,8 +280,8 @@ class Search:
     def noisy(self, shot: Shot, row: np.ndarray) -> Shot:
         """`shot` under the draws `row` as the search plans it: the level's error with the
         tip's error turning the line by its squirt as well (`perturb`), a little more
-        than the arm's own; planned so, the pro cleared more runouts (docs/ai-rounds.md,
-        "Squirt round")."""
+        than the arm's own; planned so, the pro cleared more runouts (docs/ai.md,
+        "Levels")."""
         return perturb(shot, row, self.level, squirt=True)
 
     def pos_for(self, cand: Candidate) -> Position:

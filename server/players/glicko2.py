@@ -1,8 +1,9 @@
-"""Glicko-2 (Glickman, "Example of the Glicko-2 system", 2012), step by step as the paper.
+"""Glicko-2 (Glickman, "Example of the Glicko-2 system", 2012), step by step as Glickman
+gives it.
 
 Why our own: the one PyPI package (`glicko2` 2.1.0) is a mutable single-file port whose CI
-has been dead for years; the algorithm is fifty lines and is checked here against the
-paper's worked example (tests/players/test_glicko2.py). Pure: no clock, no I/O.
+has been dead for years; the algorithm is fifty lines and is checked here against
+Glickman's worked example (tests/players/test_glicko2.py). Pure: no clock, no I/O.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ SCALE = 173.7178  # Glicko-2's scale factor (400 / ln 10)
 BASE = 1500.0
 START_RD = 350.0  # a new player's deviation, and the most any deviation grows to
 START_VOLATILITY = 0.06
-TAU = 0.5  # constrains the change of volatility (the paper: 0.3 to 1.2)
+TAU = 0.5  # constrains the change of volatility (Glickman (2012): 0.3 to 1.2)
 EPSILON = 1e-6  # convergence of the volatility iteration
 
 
@@ -47,7 +48,7 @@ def expected_score(a: Rating, b: Rating) -> float:
 
 
 def idle(player: Rating, periods: float) -> Rating:
-    """`periods` rating periods without a game: the deviation grows (step 6 of the paper,
+    """`periods` rating periods without a game: the deviation grows (Glickman (2012) step 6,
     once per period: phi^2 + sigma^2 each), up to `START_RD`."""
     if periods <= 0:
         return player

@@ -3,7 +3,7 @@ is high, the deviation growing while the player does not play, and the update of
 match's two players.
 
 Rating period: a ranked match is rated when it ends, as a period of its own (lichess does
-the same); between games the deviation grows by the paper's step 6 once per
+the same); between games the deviation grows by Glickman's step 6 once per
 `RATING_PERIOD` (fractions count), up to the starting 350.
 """
 
@@ -19,7 +19,7 @@ RATING_PERIOD = 86_400.0  # s: one day, the period of the deviation's growth
 PROVISIONAL_RD = 110.0  # a rating is provisional while its deviation is above this
 
 # The computer's levels on the same scale. Estimated from the ladder measured in docs/ai.md
-# (8-ball, the bots as of 2026-11-26 14:55 UTC: amateur beat beginner 81.7 % of 60 games,
+# (8-ball, the levels as they were when these were set: amateur beat beginner 81.7 % of 60 games,
 # club beat amateur 83.3 % of 60, pro beat club 85.0 % of 40), each share turned into a
 # rating gap by the logistic curve Glicko uses (400 log10(p / (1 - p)): 260, 279 and 301
 # points), anchored with the amateur at 1500, the rating every new player starts at.

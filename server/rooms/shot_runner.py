@@ -11,7 +11,7 @@ every compiled or numpy call, and while it held it the loop waited in turn: unde
 (docs/performance.md).
 
 A worker process (`POOL_SHOT_WORKERS=1`) has its own interpreter and the loop only
-unpickles the result (~1 ms), but on this 2-core machine, shared with the benchmark's
+unpickles the result (~1 ms), but on 2 cores shared with the benchmark's
 clients, one worker could not keep up with 100 shots a second. A worker process that dies
 falls back to threads.
 """

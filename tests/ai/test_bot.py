@@ -405,8 +405,8 @@ def test_side_spin_pots_aim_against_their_squirt(eight: Game) -> None:
 
 def test_with_few_pots_on_the_pro_tries_finer_strokes_on_each(eight: Game) -> None:
     """Late in a rack the pro's budget would go unspent on a handful of pots: each then
-    gets the finer set of speeds and tips (the one that lifted the runouts,
-    docs/ai-rounds.md, "Morning round"); on a table with many pots each gets the level's
+    gets the finer set of speeds and tips (the one that lifted the runouts by 11 points,
+    docs/ai.md, "Not done"); on a table with many pots each gets the level's
     usual set, and a level without the lookahead never gets the finer one."""
     obj, cue = straight_line(3, 0.5, 0.8)
     late = set_table(eight, {0: cue, 1: obj, 9: (0.4, 0.3), 8: (0.5, 1.0)}, groups=SOLIDS_STRIPES)

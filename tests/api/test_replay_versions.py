@@ -72,7 +72,7 @@ def test_a_shot_played_by_another_engine_replays_its_stored_motion(client):
         client,
         "UPDATE shots SET engine = '0+older', table_geom = '[2.0,1.0,0.03,0.1,"
         "0.1]' WHERE match_id = 1 AND n = 1",
-    )  # today's engine could not reproduce it
+    )  # the current engine could not reproduce it
     status, lines = replay(client)
     assert status == 200
     assert_replays(lines, live)
@@ -80,7 +80,7 @@ def test_a_shot_played_by_another_engine_replays_its_stored_motion(client):
 
 def test_a_row_without_motion_is_simulated_again_only_by_its_own_engine(client):
     live = live_break(client)
-    set_row(client, "UPDATE shots SET motion = NULL")  # engine: today's
+    set_row(client, "UPDATE shots SET motion = NULL")  # engine: the current one
     status, lines = replay(client)
     assert status == 200
     assert_replays(lines, live)

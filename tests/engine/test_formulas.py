@@ -1,4 +1,4 @@
-"""The seed paper's two formulas on hand-made cases (paper §1 eq. 5, §2 eqs. 6-10)."""
+"""Han & Zhu (2004)'s two formulas on hand-made cases (§1 eq. 5, §2 eqs. 6-10)."""
 
 import math
 
@@ -12,7 +12,7 @@ from server.engine.physics.detect import line_contact_time, quadratic_contact_ti
 from server.engine.physics.resolve import ball_ball
 
 R = 0.028575
-# The paper's balls: elastic and frictionless (§1), so no throw.
+# Han & Zhu's (2004) balls: elastic and frictionless (§1), so no throw.
 ELASTIC = PhysicsParams(e_ball=1.0, u_ball_a=0.0, u_ball_b=0.0).array()
 
 

@@ -4,7 +4,7 @@ players; one address reconnecting in a loop is refused past its quota. (How late
 players' tables start under such a crowd is measured by `python -m bench.crowd`.)
 
 Each member of a crowd connects from a loopback address of its own (127.0.x.y all reach
-this machine), as the people of a real crowd would: the per-address quota of spectator
+the local host), as the people of a real crowd would: the per-address quota of spectator
 sockets is tested on its own."""
 
 from __future__ import annotations

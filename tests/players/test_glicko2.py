@@ -9,7 +9,7 @@ from server.players import Rating, expected_score, idle, rate
 
 def test_the_papers_worked_example():
     """1500/200/0.06 against 1400/30, 1550/100, 1700/300 winning the first game only: the
-    paper's 1464.06 / 151.52 / 0.05999 (the paper rounds each step; exact arithmetic gives
+    Glickman's (2012) 1464.06 / 151.52 / 0.05999 (he rounds each step; exact arithmetic gives
     1464.05, within 0.01)."""
     player = Rating(1500, 200, 0.06)
     games = [(Rating(1400, 30), 1.0), (Rating(1550, 100), 0.0), (Rating(1700, 300), 0.0)]

@@ -101,7 +101,7 @@ async def play_round(
     address: str, room: str, tokens: list[str], results: dict, draw: random.Random, kill: bool
 ) -> None:
     """Reconnect, let the shot the last stop cut play out (a restart plays it again from its
-    stored start), strike the next shot and return at this round's moment, for the caller
+    stored start), strike the next shot and return at this stop's moment, for the caller
     to stop the server (`kill` False: the shot is played to its end)."""
     players = [await Player.connect(address, room, t, results) for t in tokens]
     try:

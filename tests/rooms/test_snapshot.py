@@ -144,7 +144,7 @@ def test_a_room_saved_at_rest_in_the_first_form_loads() -> None:
     assert 7 not in on_table and 11 not in on_table and len(on_table) == 14
     cue = room.match.game.balls.positions[0].tolist()
     assert cue == data["match"]["game"]["balls"]["positions"][0]  # floats exactly as stored
-    # and it is saved again in today's form, which loads to the same room
+    # and it is saved again in the current form, which loads to the same room
     again = room_from_snapshot(json.loads(encode(room_to_snapshot(room, 12)))).room
     assert again.match is not None and again.match.to_dict() == room.match.to_dict()
 

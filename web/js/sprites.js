@@ -1,6 +1,6 @@
 /**
  * Ball sprites: each ball pre-rendered as N cels of one turn of rolling, composited the way
- * the seed paper did it with bitmaps (a mask ANDed with the background, the sprite ORed on
+ * Han & Zhu (2004) did it with bitmaps (a mask ANDed with the background, the sprite ORed on
  * top), here with canvas alpha compositing:
  *
  *  - a cel is the ball's painted surface (colour, stripe, number disc) seen from above after
@@ -224,7 +224,7 @@ function ballCels(id, side, r, decals, decalSize, mask) {
       }
     }
     ctx.putImageData(img, 0, 0);
-    // The mask: keep the surface only where the disc is (the paper's AND).
+    // The mask: keep the surface only where the disc is (Han & Zhu's AND).
     ctx.globalCompositeOperation = 'destination-in';
     ctx.drawImage(mask, 0, 0);
     ctx.globalCompositeOperation = 'source-over';

@@ -1,8 +1,8 @@
 """When does the next event happen? Times of impact for straight-line motion.
 
-Ball-ball (paper §2): with relative position d and velocity v the centres are 2R apart when
-A t^2 + B t + C = 0, A = v.v, B = 2 d.v, C = d.d - (2R)^2. Only approaching pairs (B < 0)
-can collide; an approaching pair that already touches or overlaps by round-off (C <= 0)
+Ball-ball (Han & Zhu (2004) §2): with relative position d and velocity v the centres are 2R
+apart when A t^2 + B t + C = 0, A = v.v, B = 2 d.v, C = d.d - (2R)^2. Only approaching pairs
+(B < 0) can collide; an approaching pair that already touches or overlaps by round-off (C <= 0)
 collides now. The smaller root is taken in the cancellation-free form 2C / (-B + sqrt(disc)).
 A jaw point is the same quadratic with R in place of 2R, and a pocket's hole the same with
 the hole's radius (the ball drops when its centre is over the hole); a cushion and a jaw's

@@ -1,7 +1,7 @@
 """How a ball moves between events: sliding, rolling and spinning friction.
 
 Within one sub-step a ball moves in a straight line at the velocity it has at the start of
-the sub-step (the paper's model), and its velocity and spin are then brought forward
+the sub-step (Han & Zhu's (2004) model), and its velocity and spin are then brought forward
 exactly under constant friction. Sub-steps end at every state change (slide to roll, roll
 to rest), so the friction law never changes inside one.
 

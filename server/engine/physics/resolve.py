@@ -1,8 +1,8 @@
 """What an event does to the balls.
 
-Ball-ball (paper §1, eq. 5): normal components exchanged, tangential kept; with restitution
-e the exchange is scaled by (1 + e)/2. Friction at the contact (Alciatore's TP A-14 model)
-throws the object ball and passes spin between the balls.
+Ball-ball (Han & Zhu (2004) §1, eq. 5): normal components exchanged, tangential kept; with
+restitution e the exchange is scaled by (1 + e)/2. Friction at the contact (Alciatore's
+TP A-14 model) throws the object ball and passes spin between the balls.
 Cushion and jaw: Han 2005's impulse model with the contact on the cushion nose, above the
 ball's centre (see `rebound`), and a restitution that falls at high speed.
 """
@@ -34,7 +34,7 @@ def ball_ball(pos, vel, w, st, i, j, p):
     """Collide balls i and j; returns the approach speed along the line of centres (0 when
     they were not approaching, and nothing changed).
 
-    Normal part: paper §1 eq. 5, the exchange scaled by (1 + e)/2. Tangential part: one
+    Normal part: Han & Zhu (2004) §1 eq. 5, the exchange scaled by (1 + e)/2. Tangential part: one
     Coulomb friction impulse against the slip of the two surfaces at the contact point,
     at most mu times the normal impulse and never more than stops the slip (each surface
     point answers a tangential impulse J/m with 7/2 J/m, so the slip with 7 J/m), with
