@@ -55,6 +55,14 @@ def to_data(value: Any, kind: Any | None = None) -> Any:
     return adapter(type(value) if kind is None else kind).dump_python(value, mode="json")
 
 
+def to_dict(value: Any) -> dict[str, Any]:
+    """A dataclass or model as its plain JSON-able mapping (`to_data` of a record)."""
+    data = to_data(value)
+    if not isinstance(data, dict):
+        raise TypeError(f"{type(value).__name__} is not stored as a mapping")
+    return data
+
+
 def from_data(kind: type[T], data: Any) -> T:
     """The inverse of `to_data`: validates `data` and builds a `kind`."""
     value: T = adapter(kind).validate_python(data)

@@ -17,9 +17,9 @@ import numpy as np
 
 from server.engine import CUE, BallSet, Shot, Table
 from server.rules import BEHIND_HEAD_STRING, Game
-from server.rules.kinds import GameRules
 from server.rules.placement import can_place
 from server.rules.position import Position
+from server.rules.strategy import GameRules
 
 from .aiming import clamp_shot, perturb
 from .geometry import best_chance, path_clear, pockets_of

@@ -18,11 +18,11 @@ import numpy as np
 
 from server.engine import CUE, MAX_SPEED, BallSet, Settled, Shot, Table, settle
 from server.engine.results import Event
-from server.rules.kinds import GameRules
 from server.rules.position import Position
 from server.rules.ruling import Ruling
 from server.rules.shotfacts import ShotFacts, shot_facts
 from server.rules.spotting import respot
+from server.rules.strategy import GameRules
 
 from .aiming import aim_carom, aim_for_throw, aimed, clamp_shot, perturb, pocket_window
 from .geometry import (
@@ -37,6 +37,7 @@ from .indirect import bank_options, billiard_options, carom_options, combo_optio
 from .levels import Level
 
 WIN, LOSS = 1.0, -1.0
+WindowKey = tuple[int, int, int, bytes]  # target, pocket, speed step, the object balls
 FOUL = -0.6  # the opponent has ball in hand
 KEEP_BASE, KEEP_SCALE = 0.15, 0.8  # value of keeping the table: base + scale * next chance
 GIVE_BASE, GIVE_SCALE = -0.1, 0.6  # value of giving it up: base - scale * opponent chance
@@ -181,7 +182,7 @@ class Search:
     confirm_noise: np.ndarray  # fresh draws for the second look at the best few
     sims: int = 0
     limit: int = 1 << 30  # simulations allowed up to now (the level's budget per turn)
-    windows: dict[tuple, tuple[float, float] | None] = field(default_factory=dict)
+    windows: dict[WindowKey, tuple[float, float] | None] = field(default_factory=dict)
 
     # --- targets and values -----------------------------------------------------------
     def targets(self, pos: Position) -> list[int]:

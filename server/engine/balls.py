@@ -12,11 +12,11 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 from enum import IntEnum
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..codec import from_data, to_data
+from ..codec import from_data, to_dict
 from .params import DEFAULT_PARAMS, PhysicsParams
 from .physics.constants import POCKETED, ROLLING, SLIDING
 from .physics.tick import cels_of
@@ -148,19 +148,22 @@ class BallSet:
     def index(self, ball_id: int) -> int:
         """Row of ball `ball_id`; KeyError when the set does not hold it."""
         try:  # a list's index: a few times quicker than numpy's on a rack's 16 ids
-            return self.ids.tolist().index(ball_id)
+            row: int = self.ids.tolist().index(ball_id)
+            return row
         except ValueError:
             raise KeyError(ball_id) from None
 
     @property
     def on_table(self) -> np.ndarray:
         """(N,) bool: the ball has not been pocketed."""
-        return self.states != POCKETED
+        on: np.ndarray = self.states != POCKETED
+        return on
 
     @property
     def moving(self) -> np.ndarray:
         """(N,) bool: the ball translates (sliding or rolling)."""
-        return (self.states == SLIDING) | (self.states == ROLLING)
+        moving: np.ndarray = (self.states == SLIDING) | (self.states == ROLLING)
+        return moving
 
     def at_rest(self) -> bool:
         """No ball translates any more."""
@@ -179,10 +182,12 @@ class BallSet:
         return (float(x), float(y))
 
     def pocketed_ids(self) -> list[int]:
-        return self.ids[~self.on_table].tolist()
+        ids: list[int] = self.ids[~self.on_table].tolist()
+        return ids
 
     def on_table_ids(self) -> list[int]:
-        return self.ids[self.on_table].tolist()
+        ids: list[int] = self.ids[self.on_table].tolist()
+        return ids
 
     def with_ball(self, ball_id: int, xy: tuple[float, float]) -> BallSet:
         """A copy with ball `ball_id` stationary on the table at `xy` (spotting, ball in hand)."""
@@ -204,11 +209,11 @@ class BallSet:
             + 0.5 * inertia * np.sum(self.spins[on] ** 2)
         )
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
         """The stored form: `server.codec.to_data(self)`."""
-        return to_data(self)
+        return to_dict(self)
 
     @classmethod
-    def from_dict(cls, data: Mapping) -> BallSet:
+    def from_dict(cls, data: Mapping[str, Any]) -> BallSet:
         """The inverse of `to_dict`: `server.codec.from_data(BallSet, data)`."""
         return from_data(cls, dict(data))

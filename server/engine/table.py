@@ -205,7 +205,7 @@ class Table:
         """(P, 2) float64 drawn centres (where a pocketed ball rests)."""
         return np.array([p.center for p in self.pockets], dtype=np.float64)
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
         """Plain data for clients: sizes, cushions, jaws and pockets."""
         return {
             "length": self.length,

@@ -13,12 +13,12 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from server.codec import from_data, to_data
+from server.codec import from_data, to_dict
 from server.engine import CUE, BallSet, ShotResult, Table, rack
 
 from .errors import IllegalActionError
 from .fouls import label
-from .kinds import GameRules, rules_for
+from .kinds import rules_for
 from .options import DEFAULT_OPTIONS, RuleOptions
 from .outcome import BEHIND_HEAD_STRING, Decision, Outcome
 from .placement import can_place
@@ -27,6 +27,7 @@ from .ruling import Ruling
 from .shotfacts import shot_facts
 from .spotting import respot
 from .stored import Groups, StoredTable
+from .strategy import GameRules
 from .words import and_list, balls, capitalised
 
 RERACK_SEED_STEP = 7919  # each rack of a game gets its own seed, reproducibly
@@ -396,7 +397,7 @@ class Game:
     # --- storage ----------------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:
         """The stored form: `server.codec.to_data(self)` (JSON-able; floats exact)."""
-        return to_data(self)
+        return to_dict(self)
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Game:

@@ -7,7 +7,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from server.codec import from_data, to_data
+from server.codec import from_data, to_dict
 from server.engine import ShotResult, Table
 
 from .errors import IllegalActionError
@@ -171,7 +171,7 @@ class Match:
 
     def to_dict(self) -> dict[str, Any]:
         """The stored form, the current game included: `server.codec.to_data(self)`."""
-        return to_data(self)
+        return to_dict(self)
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Match:

@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from server.codec import from_data, to_data
+from server.codec import from_data, to_dict
 
 ANYWHERE = "anywhere"
 BEHIND_HEAD_STRING = "behind_head_string"
@@ -40,7 +40,7 @@ class Decision:
     prompt: str
 
     def to_dict(self) -> dict[str, Any]:
-        return to_data(self)
+        return to_dict(self)
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Decision:
@@ -75,7 +75,7 @@ class Outcome:
 
     def to_dict(self) -> dict[str, Any]:
         """Plain JSON-able data, as browsers get it in `shot_result`."""
-        return to_data(self)
+        return to_dict(self)
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Outcome:

@@ -40,7 +40,7 @@ T = TypeVar("T")
 @dataclass
 class _Job:
     fn: Callable[[Repository], Any]
-    future: Future
+    future: Future[Any]
     retry_for: float
     batchable: bool
 
@@ -84,7 +84,7 @@ class Database:
         if not self.closed:
             return
         # Items: a `_Job`, a list of them (one turn's writes), or None (stop).
-        self._jobs: queue.SimpleQueue = queue.SimpleQueue()
+        self._jobs: queue.SimpleQueue[_Job | list[_Job] | None] = queue.SimpleQueue()
         self._turn: list[_Job] = []  # writes made in this turn of the loop, not yet handed
         self._turn_lock = threading.Lock()
         self._ready: Future[None] = Future()
@@ -223,7 +223,7 @@ class Database:
         goes on without that record. The future tells a caller that cares, e.g. about a
         `StaleOwner` refusal."""
 
-        def done(future: Future) -> None:
+        def done(future: Future[T]) -> None:
             exc = future.exception()
             if isinstance(exc, StaleOwner):
                 log.warning("store: %s refused: %s", what, exc)
@@ -267,7 +267,7 @@ def _first_line(exc: BaseException) -> str:
     return text.splitlines()[0] if text else exc.__class__.__name__
 
 
-def _each_in_a_savepoint(repo: Repository, fns: list[Callable[[Repository], Any]]) -> list:
+def _each_in_a_savepoint(repo: Repository, fns: list[Callable[[Repository], Any]]) -> list[Any]:
     """Run `fns` in one transaction, each in a savepoint: (True, result) or (False, error)
     each. A passing failure (the connection) fails the whole batch, to be tried again."""
     outcomes: list[tuple[bool, Any]] = []

@@ -295,7 +295,7 @@ def _insert(dialect: str) -> Any:
     return postgresql.insert if dialect == "postgresql" else sqlite.insert
 
 
-def _rating(row: Row) -> RatingRecord:
+def _rating(row: Row[Any]) -> RatingRecord:
     return RatingRecord(
         row.player_id,
         row.kind,
@@ -308,7 +308,7 @@ def _rating(row: Row) -> RatingRecord:
     )
 
 
-def _ranked(row: Row) -> RankedRecord:
+def _ranked(row: Row[Any]) -> RankedRecord:
     names = json.loads(row.names)
     return RankedRecord(
         row.room_id,

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 
 @dataclass(frozen=True)
@@ -42,10 +43,10 @@ class ShotRecord:
     room_shot: int
     game: int
     seat: int
-    shot: dict  # {"angle": float, "speed": float, "tip": [side, height]}
+    shot: dict[str, Any]  # {"angle": float, "speed": float, "tip": [side, height]}
     table: list[float]  # Table(*table)
-    balls: dict  # BallSet.to_dict() before the shot
-    outcome: dict  # Outcome.to_dict()
+    balls: dict[str, Any]  # BallSet.to_dict() before the shot
+    outcome: dict[str, Any]  # Outcome.to_dict()
     played_at: float
     engine: str | None = None  # ENGINE_VERSION that played it (None: before versions)
     motion: str | None = None  # the streamed messages (`protocol.plan.motion_text`)
@@ -67,5 +68,5 @@ class RoomSnapshot:
     """A live room as saved after every shot: see `server.rooms.snapshot`."""
 
     room_id: str
-    data: dict = field(repr=False)
+    data: dict[str, Any] = field(repr=False)
     updated_at: float = 0.0

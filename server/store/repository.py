@@ -316,10 +316,10 @@ class Repository:
         room_shot: int,
         game: int,
         seat: int,
-        shot: dict,
+        shot: dict[str, Any],
         table: list[float],
-        balls: dict,
-        outcome: dict,
+        balls: dict[str, Any],
+        outcome: dict[str, Any],
         played_at: float | None = None,
         engine: str | None = None,
         motion: str | None = None,
@@ -396,7 +396,7 @@ class Repository:
         return None if r is None else RoomSnapshot(r.room_id, json.loads(r.snapshot), r.updated_at)
 
 
-def _shot_record(r: Row) -> ShotRecord:
+def _shot_record(r: Row[Any]) -> ShotRecord:
     return ShotRecord(
         r.match_id,
         r.n,

@@ -14,6 +14,7 @@ from tests.support.postgres import PostgresServer
 from tests.support.settings import settings_in
 
 
+@pytest.mark.postgres
 def test_a_server_on_postgresql_keeps_its_rooms_there_across_a_restart(
     postgres: PostgresServer, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
