@@ -329,11 +329,9 @@ export class LiveTable {
     const frame = this.view.begin(state.table);
     if (!frame) return;
     const sit = this.situation();
-    const table = state.table;
     const dragging = aim.mode === 'placing' && aim.placing ? aim.placing : null;
-    if (sit.myTurn) drawHandArea(frame, table, sit.ballInHand, dragging);
-    const remote = !sit.myTurn && this.remoteCue && now - this.remoteCue.at < REMOTE_CUE_TTL
-      && state.phase === 'aiming' ? this.remoteCue : null;
+    if (sit.myTurn) drawHandArea(frame, state.table, sit.ballInHand, dragging);
+    const remote = this.remoteDrag(sit, now);
     const placing = dragging ?? this.pendingCue ?? remote;
     this.view.drawBalls(frame, now, placing ? this.cueBallAt(placing) : undefined);
     /** @type {[number, number] | null} */
@@ -342,13 +340,38 @@ export class LiveTable {
     if (state.phase === 'aiming' && cue && aim.mode !== 'placing' && !remote) {
       this.objectGuide = this.drawAim(frame, sit, cue, now);
     }
+    this.drawMarks(frame, sit, cue, now);
+  }
+
+  /**
+   * Another player's cue-ball drag, while it is fresh and they are at the table.
+   * @param {Situation} sit
+   * @param {number} now
+   */
+  remoteDrag(sit, now) {
+    const drag = this.remoteCue;
+    if (sit.myTurn || !drag || now - drag.at >= REMOTE_CUE_TTL) return null;
+    return this.state.phase === 'aiming' ? drag : null;
+  }
+
+  /**
+   * Over the balls and the aim: the practice hint, the pocket called for the 8 and the
+   * shot clock's ring.
+   * @param {Frame} frame
+   * @param {Situation} sit
+   * @param {[number, number] | null} cue
+   * @param {number} now
+   */
+  drawMarks(frame, sit, cue, now) {
+    const { state } = this;
+    const table = state.table;
     if (sit.myTurn && state.phase === 'aiming') {
       this.hint.draw(frame.ctx, frame.view, table, sit.balls, sit.cue, this.limits);
     }
     const choosing = sit.myTurn && sit.requiresCall;
     if (choosing || state.phase !== 'waiting') {
       drawCall(frame, table, { choosing, called: state.match?.called_pocket ?? null,
-        hover: aim.hoverPocket }, now);
+        hover: this.aim.hoverPocket }, now);
     }
     if (cue && state.phase === 'aiming') drawClock(frame, table, cue, clockRemaining(state, now), now);
   }
