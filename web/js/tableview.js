@@ -57,7 +57,7 @@ export class TableView {
    * @param {number} now
    */
   play(effects, now) {
-    for (const e of effects) this.playback.apply(/** @type {any} */ (e), now);
+    for (const e of effects) this.playback.apply(e, now);
   }
 
   /**
