@@ -16,6 +16,9 @@ export default [
       // `catch { }` with a comment saying why the error does not matter is fine.
       'no-empty': ['error', { allowEmptyCatch: true }],
       'no-unused-vars': ['error', { argsIgnorePattern: '^_' }],
+      // Functions short enough to read at once, with few enough paths to follow.
+      'max-lines-per-function': ['error', { max: 100, skipBlankLines: true, skipComments: true }],
+      complexity: ['error', 20],
     },
   },
   {

@@ -129,92 +129,114 @@ export class AimController {
    * @returns {Record<string, any>[]}
    */
   handle(action, ctx) {
-    /** @type {Record<string, any>[]} */
-    const out = [];
     if (action.type === 'cancel') {
       if (this.mode === 'pulling') this.tell('cancelled', 'Shot cancelled.');
       this.reset();
       this.dirty = true;
-      return out;
+      return [];
     }
     /** @type {[number, number] | null} */
     const p = action.x === undefined || action.y === undefined ? this.pointer
       : [action.x, action.y];
     if (p) this.pointer = p;
-    if (!ctx.myTurn || !ctx.table) { this.reset(); return out; }
+    if (!ctx.myTurn || !ctx.table) { this.reset(); return []; }
+    this.hoverPocket = ctx.requiresCall && p ? pocketAt(ctx.table, p[0], p[1]) : -1;
+    if (action.type === 'down') return p ? this.press(p, ctx) : [];
+    if (action.type === 'move') { if (p) this.move(p, action, ctx); return []; }
+    if (action.type === 'up') return this.release(p, ctx);
+    return [];
+  }
+
+  /**
+   * A press at `p`: call the pocket under it, pick up the cue ball (ball in hand), or start
+   * pulling back from where the cue points.
+   * @param {[number, number]} p
+   * @param {Situation} ctx
+   * @returns {Record<string, any>[]}
+   */
+  press(p, ctx) {
     const { table } = ctx;
     const r = table.ball_radius;
+    if (ctx.requiresCall && this.hoverPocket >= 0) return [{ type: 'call', pocket: this.hoverPocket }];
     const area = placementArea(table, ctx.ballInHand);
-    this.hoverPocket = ctx.requiresCall && p ? pocketAt(table, p[0], p[1]) : -1;
-
-    switch (action.type) {
-      case 'down': {
-        if (!p) break;
-        if (ctx.requiresCall && this.hoverPocket >= 0) {
-          out.push({ type: 'call', pocket: this.hoverPocket });
-          break;
-        }
-        if (area && (!ctx.cue || dist(p[0], p[1], ctx.cue[0], ctx.cue[1]) < r * 2.5)) {
-          this.mode = 'placing';
-          this.placing = placeCue(table, area, ctx.balls, p[0], p[1]);
-          break;
-        }
-        if (!ctx.cue) break;
-        this.mode = 'pulling';
-        this.anchor = p;
-        if (dist(p[0], p[1], ctx.cue[0], ctx.cue[1]) > r) {
-          this.angle = Math.atan2(p[1] - ctx.cue[1], p[0] - ctx.cue[0]);
-        }
-        this.power = 0;
-        this.dirty = true;
-        break;
-      }
-      case 'move': {
-        if (!p) break;
-        if (this.mode === 'placing' && area) {
-          this.placing = placeCue(table, area, ctx.balls, p[0], p[1]);
-        } else if (this.mode === 'pulling' && this.anchor) {
-          this.power = pullPower(this.anchor, p, this.angle, MAX_PULL);
-          this.dirty = true;
-        } else if (ctx.cue && action.pointerType !== 'touch'
-                   && dist(p[0], p[1], ctx.cue[0], ctx.cue[1]) > r) {
-          this.angle = Math.atan2(p[1] - ctx.cue[1], p[0] - ctx.cue[0]);
-          this.dirty = true;
-        }
-        break;
-      }
-      case 'up': {
-        if (this.mode === 'placing' && this.placing) {
-          if (this.placing.free) {
-            out.push({ type: 'place_cue', x: round6(this.placing.x), y: round6(this.placing.y) });
-          } else {
-            this.tell('refused', 'The cue ball cannot go on another ball: drop it on free cloth.');
-          }
-          this.mode = 'idle';
-          this.placing = null;
-          break;
-        }
-        if (this.mode === 'pulling') {
-          if (p && this.anchor) this.power = pullPower(this.anchor, p, this.angle, MAX_PULL);
-          if (this.power < MIN_POWER) {
-            this.tell('cancelled', 'Shot cancelled: keep pressing and pull back, then let go.');
-          } else {
-            const { max_speed: maxSpeed, max_tip: maxTip } = ctx.limits;
-            const tip = clampTip(this.tip[0], this.tip[1], maxTip);
-            const rounded = tip.map(round6);
-            out.push({ type: 'shoot', angle: round6(this.angle),
-              speed: Math.min(maxSpeed, round6(speedFromPower(this.power, maxSpeed))),
-              tip: Math.hypot(rounded[0], rounded[1]) <= maxTip ? rounded : tip.map(trunc6) });
-          }
-          this.reset();
-          this.dirty = true;
-        }
-        break;
-      }
-      default:
-        break;
+    if (area && (!ctx.cue || dist(p[0], p[1], ctx.cue[0], ctx.cue[1]) < r * 2.5)) {
+      this.mode = 'placing';
+      this.placing = placeCue(table, area, ctx.balls, p[0], p[1]);
+      return [];
     }
+    if (!ctx.cue) return [];
+    this.mode = 'pulling';
+    this.anchor = p;
+    if (dist(p[0], p[1], ctx.cue[0], ctx.cue[1]) > r) {
+      this.angle = Math.atan2(p[1] - ctx.cue[1], p[0] - ctx.cue[0]);
+    }
+    this.power = 0;
+    this.dirty = true;
+    return [];
+  }
+
+  /**
+   * A move to `p`: drag the cue ball, set the power while pulling, or aim (not by touch:
+   * a finger aims by pressing).
+   * @param {[number, number]} p
+   * @param {PointerAction} action
+   * @param {Situation} ctx
+   */
+  move(p, action, ctx) {
+    const { table } = ctx;
+    const area = placementArea(table, ctx.ballInHand);
+    if (this.mode === 'placing' && area) {
+      this.placing = placeCue(table, area, ctx.balls, p[0], p[1]);
+    } else if (this.mode === 'pulling' && this.anchor) {
+      this.power = pullPower(this.anchor, p, this.angle, MAX_PULL);
+      this.dirty = true;
+    } else if (ctx.cue && action.pointerType !== 'touch'
+               && dist(p[0], p[1], ctx.cue[0], ctx.cue[1]) > table.ball_radius) {
+      this.angle = Math.atan2(p[1] - ctx.cue[1], p[0] - ctx.cue[0]);
+      this.dirty = true;
+    }
+  }
+
+  /**
+   * A release: drop the dragged cue ball, or shoot (a release without pulling cancels).
+   * @param {[number, number] | null} p
+   * @param {Situation} ctx
+   * @returns {Record<string, any>[]}
+   */
+  release(p, ctx) {
+    if (this.mode === 'placing' && this.placing) {
+      const { placing } = this;
+      this.mode = 'idle';
+      this.placing = null;
+      if (placing.free) return [{ type: 'place_cue', x: round6(placing.x), y: round6(placing.y) }];
+      this.tell('refused', 'The cue ball cannot go on another ball: drop it on free cloth.');
+      return [];
+    }
+    if (this.mode !== 'pulling') return [];
+    if (p && this.anchor) this.power = pullPower(this.anchor, p, this.angle, MAX_PULL);
+    /** @type {Record<string, any>[]} */
+    const out = [];
+    if (this.power < MIN_POWER) {
+      this.tell('cancelled', 'Shot cancelled: keep pressing and pull back, then let go.');
+    } else {
+      out.push(this.shot(ctx.limits));
+    }
+    this.reset();
+    this.dirty = true;
     return out;
+  }
+
+  /**
+   * The `shoot` message for the aim now, within the server's limits.
+   * @param {import('./limits.js').Limits} limits
+   */
+  shot(limits) {
+    const { max_speed: maxSpeed, max_tip: maxTip } = limits;
+    const tip = clampTip(this.tip[0], this.tip[1], maxTip);
+    const rounded = tip.map(round6);
+    return { type: 'shoot', angle: round6(this.angle),
+      speed: Math.min(maxSpeed, round6(speedFromPower(this.power, maxSpeed))),
+      tip: Math.hypot(rounded[0], rounded[1]) <= maxTip ? rounded : tip.map(trunc6) };
   }
 
   /**

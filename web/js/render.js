@@ -84,6 +84,16 @@ export function cushionBacks(table) {
 }
 
 /**
+ * @typedef {object} BedBox the bed's box on screen (CSS px) and the cushion and rail widths
+ * @property {number} bx
+ * @property {number} by
+ * @property {number} bw
+ * @property {number} bh
+ * @property {number} cw
+ * @property {number} rw
+ */
+
+/**
  * Draw the static table into `ctx` (already scaled to CSS pixels).
  * @param {Ctx} ctx
  * @param {Table} table
@@ -91,21 +101,28 @@ export function cushionBacks(table) {
  */
 export function drawTable(ctx, table, view) {
   const s = view.scale;
-  const L = table.length;
-  const W = table.width;
   // The bed's box on screen (either orientation).
   const [c0x, c0y] = view.toScreen(0, 0);
-  const [c1x, c1y] = view.toScreen(L, W);
-  const bx = Math.min(c0x, c1x);
-  const by = Math.min(c0y, c1y);
-  const bw = Math.abs(c1x - c0x);
-  const bh = Math.abs(c1y - c0y);
-  const cw = CUSHION_WIDTH * s;
-  const rw = RAIL_WIDTH * s;
+  const [c1x, c1y] = view.toScreen(table.length, table.width);
+  const box = { bx: Math.min(c0x, c1x), by: Math.min(c0y, c1y), bw: Math.abs(c1x - c0x),
+    bh: Math.abs(c1y - c0y), cw: CUSHION_WIDTH * s, rw: RAIL_WIDTH * s };
 
   ctx.fillStyle = '#10161c';
   ctx.fillRect(0, 0, view.width, view.height);
+  drawRails(ctx, view, box);
+  drawPockets(ctx, table, view);
+  drawBed(ctx, table, view, box);
+  drawDiamonds(ctx, table, view);
+  drawChalk(ctx, table, view);
+}
 
+/**
+ * @param {Ctx} ctx
+ * @param {View} view
+ * @param {BedBox} box
+ */
+function drawRails(ctx, view, { bx, by, bw, bh, cw, rw }) {
+  const s = view.scale;
   // Wooden rails.
   const ox = bx - cw - rw;
   const oy = by - cw - rw;
@@ -122,7 +139,15 @@ export function drawTable(ctx, table, view) {
   ctx.lineWidth = Math.max(1, s * 0.006);
   roundRect(ctx, ox + rw * 0.12, oy + rw * 0.12, ow - rw * 0.24, oh - rw * 0.24, rw * 0.5);
   ctx.stroke();
+}
 
+/**
+ * @param {Ctx} ctx
+ * @param {Table} table
+ * @param {View} view
+ */
+function drawPockets(ctx, table, view) {
+  const s = view.scale;
   // Pocket plates on the rails (dark leather around each hole).
   for (const p of table.pockets) {
     const [px, py] = view.toScreen(p.center[0], p.center[1]);
@@ -133,7 +158,6 @@ export function drawTable(ctx, table, view) {
   }
 
   // Pocket throats and holes: from the mouth (between the jaws) back into the rail.
-  const backs = cushionBacks(table);
   table.pockets.forEach((p) => {
     if (!p.jaws) return;
     const [[ax, ay], [bx2, by2]] = p.jaws;
@@ -155,7 +179,17 @@ export function drawTable(ctx, table, view) {
     ctx.arc(px, py, r, 0, Math.PI * 2);
     ctx.fill();
   });
+}
 
+/**
+ * @param {Ctx} ctx
+ * @param {Table} table
+ * @param {View} view
+ * @param {BedBox} box
+ */
+function drawBed(ctx, table, view, { bx, by, bw, bh }) {
+  const s = view.scale;
+  const backs = cushionBacks(table);
   // Cloth on the bed, with a soft vignette from the lamp.
   const cloth = ctx.createRadialGradient(bx + bw / 2, by + bh / 2, Math.min(bw, bh) * 0.1,
     bx + bw / 2, by + bh / 2, Math.max(bw, bh) * 0.7);
@@ -186,7 +220,17 @@ export function drawTable(ctx, table, view) {
     ctx.lineTo(pts[2][0], pts[2][1]);
     ctx.stroke();
   });
+}
 
+/**
+ * @param {Ctx} ctx
+ * @param {Table} table
+ * @param {View} view
+ */
+function drawDiamonds(ctx, table, view) {
+  const s = view.scale;
+  const L = table.length;
+  const W = table.width;
   // Diamonds (sights) on the rails: every eighth of the length, every quarter of the width.
   const mid = CUSHION_WIDTH + RAIL_WIDTH * 0.5;
   const dsz = Math.max(2, s * 0.012);
@@ -211,7 +255,17 @@ export function drawTable(ctx, table, view) {
     diamond(-mid, (W * k) / 4);
     diamond(L + mid, (W * k) / 4);
   }
+}
 
+/**
+ * @param {Ctx} ctx
+ * @param {Table} table
+ * @param {View} view
+ */
+function drawChalk(ctx, table, view) {
+  const s = view.scale;
+  const L = table.length;
+  const W = table.width;
   // Head string and spots, faint chalk marks.
   ctx.strokeStyle = 'rgba(255,255,255,0.12)';
   ctx.lineWidth = Math.max(1, s * 0.002);

@@ -124,95 +124,123 @@ export function reduce(state, msg, now = 0) {
   const effects = [];
   if (!msg || typeof msg !== 'object') return { state, effects };
   const [seq, gap] = checkSeq(state.seq, msg);
-  let s = { ...state, seq };
+  const s = { ...state, seq };
   if (gap && now - s.lastSyncAt > SYNC_COOLDOWN) {
     // A frame gap alone is harmless, but a missed state/result is not: resync either way.
     effects.push({ kind: 'sync' });
     s.lastSyncAt = now;
   }
-  switch (msg.type) {
-    case 'welcome':
-      s.me = { seat: msg.seat ?? null, role: msg.role ?? 'spectator', name: msg.name };
-      s.stream = readStream(msg, s.stream);
-      s.limits = readLimits(msg.limits, s.limits);
-      s.seq = msg.seq ?? s.seq;
-      s.connection = 'open';
-      break;
-    case 'state': {
-      s.room = msg.room ?? s.room;
-      s.phase = msg.phase ?? s.phase;
-      s.table = msg.table ?? s.table;
-      s.balls = decodeBalls(msg.balls);
-      s.clock = msg.clock ? { ...msg.clock, at: now } : null;
-      s.grace = msg.grace ?? [];
-      s.match = msg.match ?? null;
-      const said = [s.match?.last_outcome?.message, s.match?.notice].filter(Boolean);
-      if (said.length) s.outcome = said.join(' ');
-      if (s.phase === 'rolling' && msg.shot) {
-        // A shot is being shown (we joined or came back during it): its `motion` follows,
-        // to be played from this tick on, plus the time since.
-        const t0 = msg.shot.tick / s.stream.tick_hz;
-        s.rolling = { shot: msg.shot.id, t0, at: now };
-        if (s.shot !== msg.shot.id) {
-          s.shot = msg.shot.id;
-          effects.push({ kind: 'shot', shot: msg.shot.id, tick: msg.shot.tick, t0,
-            balls: s.balls });
-        }
-      } else {
-        s.shot = null;
-        s.rolling = null;
-        effects.push({ kind: 'rest', balls: s.balls });
-      }
-      if (s.phase !== 'aiming') s.aim = null;
-      break;
-    }
-    case 'motion': {
-      // A shot's whole motion (binary, decoded by net.js; a replay's comes in base64).
-      let motion;
-      try {
-        motion = msg.tracks ? msg : decodeMotion(base64Bytes(msg.data));
-      } catch {
-        break; // not a motion this client can read: the next `state` shows the table
-      }
-      const joined = s.rolling && s.rolling.shot === motion.shot;
-      const t0 = joined && s.rolling ? s.rolling.t0 + (now - s.rolling.at) : 0;
-      s.shot = motion.shot;
-      s.rolling = null;
-      s.phase = 'rolling';
-      s.aim = null;
-      s.clock = null;
-      effects.push({ kind: 'motion', motion, t0 });
-      break;
-    }
-    case 'shot_result': {
-      s.lastResult = msg;
-      s.outcome = msg.outcome?.message ?? s.outcome;
-      if (s.match) {
-        s.match = { ...s.match, score: msg.score ?? s.match.score };
-      }
-      effects.push({ kind: 'result', result: msg });
-      break;
-    }
-    case 'aim':
-      s.aim = { seat: msg.seat, angle: msg.angle, power: msg.power ?? 0,
-        tip: msg.tip ?? [0, 0], at: now };
-      break;
-    case 'chat':
-      s.chat = [...s.chat, { seat: msg.seat, name: msg.name, text: msg.text }].slice(-50);
-      break;
-    case 'presence':
-      if (s.room) s.room = { ...s.room, players: msg.players ?? s.room.players,
-        spectators: msg.spectators ?? s.room.spectators };
-      s.grace = msg.grace ?? s.grace;
-      break;
-    case 'error':
-      s.error = { code: msg.code, message: msg.message, ref: msg.ref ?? null, at: now };
-      break;
-    default:
-      break;
-  }
+  HANDLERS.get(msg.type)?.(s, msg, now, effects);
   return { state: s, effects };
 }
+
+/**
+ * One message type's part of `reduce`: `s` (a fresh copy of the state) is changed in place
+ * and the effects are pushed onto `effects`.
+ * @typedef {(s: RoomState, msg: any, now: number, effects: Effect[]) => void} Handler
+ */
+
+/** @type {Handler} */
+function onWelcome(s, msg) {
+  s.me = { seat: msg.seat ?? null, role: msg.role ?? 'spectator', name: msg.name };
+  s.stream = readStream(msg, s.stream);
+  s.limits = readLimits(msg.limits, s.limits);
+  s.seq = msg.seq ?? s.seq;
+  s.connection = 'open';
+}
+
+/** @type {Handler} */
+function onState(s, msg, now, effects) {
+  s.room = msg.room ?? s.room;
+  s.phase = msg.phase ?? s.phase;
+  s.table = msg.table ?? s.table;
+  s.balls = decodeBalls(msg.balls);
+  s.clock = msg.clock ? { ...msg.clock, at: now } : null;
+  s.grace = msg.grace ?? [];
+  s.match = msg.match ?? null;
+  const said = [s.match?.last_outcome?.message, s.match?.notice].filter(Boolean);
+  if (said.length) s.outcome = said.join(' ');
+  if (s.phase === 'rolling' && msg.shot) {
+    // A shot is being shown (we joined or came back during it): its `motion` follows,
+    // to be played from this tick on, plus the time since.
+    const t0 = msg.shot.tick / s.stream.tick_hz;
+    s.rolling = { shot: msg.shot.id, t0, at: now };
+    if (s.shot !== msg.shot.id) {
+      s.shot = msg.shot.id;
+      effects.push({ kind: 'shot', shot: msg.shot.id, tick: msg.shot.tick, t0,
+        balls: s.balls });
+    }
+  } else {
+    s.shot = null;
+    s.rolling = null;
+    effects.push({ kind: 'rest', balls: s.balls });
+  }
+  if (s.phase !== 'aiming') s.aim = null;
+}
+
+/** @type {Handler} */
+function onMotion(s, msg, now, effects) {
+  // A shot's whole motion (binary, decoded by net.js; a replay's comes in base64).
+  let motion;
+  try {
+    motion = msg.tracks ? msg : decodeMotion(base64Bytes(msg.data));
+  } catch {
+    return; // not a motion this client can read: the next `state` shows the table
+  }
+  const joined = s.rolling && s.rolling.shot === motion.shot;
+  const t0 = joined && s.rolling ? s.rolling.t0 + (now - s.rolling.at) : 0;
+  s.shot = motion.shot;
+  s.rolling = null;
+  s.phase = 'rolling';
+  s.aim = null;
+  s.clock = null;
+  effects.push({ kind: 'motion', motion, t0 });
+}
+
+/** @type {Handler} */
+function onShotResult(s, msg, _now, effects) {
+  s.lastResult = msg;
+  s.outcome = msg.outcome?.message ?? s.outcome;
+  if (s.match) {
+    s.match = { ...s.match, score: msg.score ?? s.match.score };
+  }
+  effects.push({ kind: 'result', result: msg });
+}
+
+/** @type {Handler} */
+function onAim(s, msg, now) {
+  s.aim = { seat: msg.seat, angle: msg.angle, power: msg.power ?? 0,
+    tip: msg.tip ?? [0, 0], at: now };
+}
+
+/** @type {Handler} */
+function onChat(s, msg) {
+  s.chat = [...s.chat, { seat: msg.seat, name: msg.name, text: msg.text }].slice(-50);
+}
+
+/** @type {Handler} */
+function onPresence(s, msg) {
+  if (s.room) s.room = { ...s.room, players: msg.players ?? s.room.players,
+    spectators: msg.spectators ?? s.room.spectators };
+  s.grace = msg.grace ?? s.grace;
+}
+
+/** @type {Handler} */
+function onError(s, msg, now) {
+  s.error = { code: msg.code, message: msg.message, ref: msg.ref ?? null, at: now };
+}
+
+/** @type {Map<string, Handler>} the message types the state follows; others change nothing */
+const HANDLERS = new Map([
+  ['welcome', onWelcome],
+  ['state', onState],
+  ['motion', onMotion],
+  ['shot_result', onShotResult],
+  ['aim', onAim],
+  ['chat', onChat],
+  ['presence', onPresence],
+  ['error', onError],
+]);
 
 /**
  * Local connection status changes (from the socket wrapper).

@@ -228,55 +228,100 @@ export function renderHistory(list, matches) {
  * @param {number} now
  */
 export function renderHud(state, now) {
-  const m = state.match;
   const mySeat = state.me.role === 'player' ? state.me.seat : null;
   const turn = turnSeat(state);
-  for (const seat of [0, 1]) {
-    const el = $(`player-${seat}`);
-    const p = state.room?.players?.find((/** @type {any} */ q) => q && q.seat === seat);
-    const exists = seat < (state.room?.seats ?? 2);
-    setHidden(el, !exists);
-    const name = p?.name ?? (exists ? 'waiting for a player…' : '');
-    const pname = el.querySelector('.pname');
-    setText(pname, name + (seat === mySeat ? ' (you)' : ''));
-    if (pname instanceof HTMLElement && pname.title !== name) pname.title = name;
-    el.classList.toggle('connected', !!p?.connected);
-    el.classList.toggle('absent', !!p && !p.connected);
-    el.classList.toggle('turn', turn === seat);
-    const group = groupOf(state, seat);
-    setText(el.querySelector('.group'), group ?? '');
-    setBalls(el.querySelector('.left'), ballsLeft(state, seat));
-  }
-
-  const turnEl = $('turn');
-  let text = 'Connecting…';
+  for (const seat of [0, 1]) renderPlayer(state, seat, seat === mySeat, turn === seat);
   const winner = winnerName(state);
-  const left = clockRemaining(state, now);
-  if (state.phase === 'waiting') {
-    text = 'Waiting for an opponent…';
-  } else if (state.room?.abandoned) {
-    text = 'Match abandoned: both players left';
-  } else if (state.phase === 'over' || winner) {
-    text = winner ? `${winner} wins the match` : 'Match over';
-  } else if (state.phase === 'rolling') {
-    const shooter = m ? playerName(state, m.turn) : null;
-    text = shooter ? `${shooter} shoots…` : 'Balls rolling…';
-  } else if (turn !== null) {
-    const who = turn === mySeat ? 'Your turn' : `${playerName(state, turn) ?? 'Player'}'s turn`;
-    const extras = [];
-    if (m?.decision) extras.push(turn === mySeat ? 'your choice' : 'choosing');
-    else if (m?.ball_in_hand) extras.push('ball in hand');
-    if (m?.requires_call && m?.called_pocket == null) extras.push('call a pocket for the 8');
-    if (m?.breaking && !m?.decision) extras.push('break');
-    text = `${who}${extras.length ? ` · ${extras.join(' · ')}` : ''}`;
-  }
-  setText(turnEl, text);
+  const turnEl = $('turn');
+  setText(turnEl, turnText(state, mySeat, turn, winner));
   turnEl.dataset.seat = turn === null ? '' : String(turn);
   turnEl.dataset.phase = state.phase;
   turnEl.classList.toggle('mine', isMyTurn(state));
+  renderClock(state, clockRemaining(state, now));
+  setText($('score'), scoreText(state));
+  setText($('outcome'), outcomeText(state));
+  renderTray(state);
+  const conn = $('connection');
+  setText(conn, state.connection);
+  conn.className = `conn ${state.connection}`;
+  setText($('role'), state.me.role === 'player' ? `seat ${(state.me.seat ?? 0) + 1}` : 'spectator');
+  renderRematch(state);
+  renderActions(state);
+  renderWinner(winner);
+  const error = state.error && now - state.error.at < 4 ? state.error.message : '';
+  setText($('toast'), error);
+  setHidden($('toast'), !error);
+}
 
-  // The shot clock: a badge with a ring that empties, urgent in the last seconds. (On a
-  // room's first break more than `limit` is left: the ring stays full until it is not.)
+/**
+ * A seat's box: the name (or that it waits for a player), connected or away, the turn,
+ * the group and the balls left.
+ * @param {import('./state.js').RoomState} state
+ * @param {number} seat
+ * @param {boolean} mine this page's seat
+ * @param {boolean} turn the seat to play
+ */
+function renderPlayer(state, seat, mine, turn) {
+  const el = $(`player-${seat}`);
+  const p = state.room?.players?.find((/** @type {any} */ q) => q && q.seat === seat);
+  const exists = seat < (state.room?.seats ?? 2);
+  setHidden(el, !exists);
+  const name = p?.name ?? (exists ? 'waiting for a player…' : '');
+  const pname = el.querySelector('.pname');
+  setText(pname, name + (mine ? ' (you)' : ''));
+  if (pname instanceof HTMLElement && pname.title !== name) pname.title = name;
+  el.classList.toggle('connected', !!p?.connected);
+  el.classList.toggle('absent', !!p && !p.connected);
+  el.classList.toggle('turn', turn);
+  const group = groupOf(state, seat);
+  setText(el.querySelector('.group'), group ?? '');
+  setBalls(el.querySelector('.left'), ballsLeft(state, seat));
+}
+
+/**
+ * The line over the table: waiting, over, rolling, or whose turn and what it holds.
+ * @param {import('./state.js').RoomState} state
+ * @param {number | null} mySeat
+ * @param {number | null} turn
+ * @param {string | null} winner
+ */
+function turnText(state, mySeat, turn, winner) {
+  const m = state.match;
+  if (state.phase === 'waiting') return 'Waiting for an opponent…';
+  if (state.room?.abandoned) return 'Match abandoned: both players left';
+  if (state.phase === 'over' || winner) return winner ? `${winner} wins the match` : 'Match over';
+  if (state.phase === 'rolling') {
+    const shooter = m ? playerName(state, m.turn) : null;
+    return shooter ? `${shooter} shoots…` : 'Balls rolling…';
+  }
+  if (turn === null) return 'Connecting…';
+  const who = turn === mySeat ? 'Your turn' : `${playerName(state, turn) ?? 'Player'}'s turn`;
+  const extras = turnExtras(m, turn === mySeat);
+  return `${who}${extras.length ? ` · ${extras.join(' · ')}` : ''}`;
+}
+
+/**
+ * What the turn holds: a choice, ball in hand, a pocket to call, the break.
+ * @param {any} m the match
+ * @param {boolean} mine
+ * @returns {string[]}
+ */
+function turnExtras(m, mine) {
+  const extras = [];
+  if (m?.decision) extras.push(mine ? 'your choice' : 'choosing');
+  else if (m?.ball_in_hand) extras.push('ball in hand');
+  if (m?.requires_call && m?.called_pocket == null) extras.push('call a pocket for the 8');
+  if (m?.breaking && !m?.decision) extras.push('break');
+  return extras;
+}
+
+/**
+ * The shot clock: a badge with a ring that empties, urgent in the last seconds. (On a
+ * room's first break more than `limit` is left: the ring stays full until it is not.)
+ * @param {import('./state.js').RoomState} state
+ * @param {number | null} left seconds
+ */
+function renderClock(state, left) {
   const clockEl = $('shot-clock');
   setHidden(clockEl, left === null);
   const urgent = left !== null && left <= URGENT_AT;
@@ -286,27 +331,39 @@ export function renderHud(state, now) {
   const frac = left === null ? 1 : Math.max(0, Math.min(1, left / limit));
   clockEl.style.setProperty('--left', frac.toFixed(3));
   setText(clockEl.querySelector('.secs'), left !== null ? countdown(left) : '');
+}
 
-  setText($('score'), scoreText(state));
-  setText($('outcome'), state.room?.abandoned
-    ? 'Both players left the table and nobody came back: the match was abandoned.'
-    : tidyOutcome(state.outcome) || (state.phase === 'waiting'
-      ? 'Send the link to a friend to start.' : ''));
-  renderTray(state);
+/**
+ * The words under the HUD: the last outcome, or what the table waits for.
+ * @param {import('./state.js').RoomState} state
+ */
+function outcomeText(state) {
+  if (state.room?.abandoned) {
+    return 'Both players left the table and nobody came back: the match was abandoned.';
+  }
+  return tidyOutcome(state.outcome)
+    || (state.phase === 'waiting' ? 'Send the link to a friend to start.' : '');
+}
 
-  const conn = $('connection');
-  setText(conn, state.connection);
-  conn.className = `conn ${state.connection}`;
-  setText($('role'), state.me.role === 'player' ? `seat ${(state.me.seat ?? 0) + 1}` : 'spectator');
-
+/**
+ * Concede (a match under way), re-rack (practice), push-out (when it may be declared).
+ * @param {import('./state.js').RoomState} state
+ */
+function renderActions(state) {
+  const m = state.match;
   const isPlayer = state.me.role === 'player';
   const practice = m?.kind === 'practice' || state.room?.game === 'practice';
-  renderRematch(state);
   setHidden($('concede'), !(isPlayer && !practice && (state.phase === 'aiming'
     || state.phase === 'rolling')));
   setHidden($('rerack'), !(isPlayer && practice));
   setHidden($('push-out'), !(isMyTurn(state) && m?.push_out_available && !m?.push_out_declared));
+}
 
+/**
+ * The match winner's banner.
+ * @param {string | null} winner
+ */
+function renderWinner(winner) {
   const banner = $('banner');
   setHidden(banner, !winner);
   if (winner && banner.dataset.winner !== winner) {
@@ -315,10 +372,6 @@ export function renderHud(state, now) {
     words.textContent = `${winner} wins the match!`;
     banner.replaceChildren(icon('trophy', 34), words);
   }
-
-  const error = state.error && now - state.error.at < 4 ? state.error.message : '';
-  setText($('toast'), error);
-  setHidden($('toast'), !error);
 }
 
 /**

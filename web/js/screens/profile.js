@@ -34,6 +34,19 @@ export async function startProfile(playerId) {
     error.textContent = e instanceof Error ? e.message : String(e);
     return;
   }
+  const nav = el('p', { class: 'small' });
+  nav.append(el('a', { href: '/' }, '← Lobby'), ' · ',
+    el('a', { href: '/leaderboard' }, 'Leaderboard'));
+  root.replaceChildren(nav, headPanel(profile, error), ratingsPanel(profile),
+    recentPanel(profile.recent), matchesPanel(profile.matches));
+}
+
+/**
+ * The name (with the rename field on your own profile) and the error line.
+ * @param {any} profile
+ * @param {HTMLElement} error
+ */
+function headPanel(profile, error) {
   const title = el('h1', { 'data-testid': 'profile-name' }, profile.name);
   const head = el('section', { class: 'panel' });
   head.append(title);
@@ -59,7 +72,14 @@ export async function startProfile(playerId) {
     });
   }
   head.append(error);
+  return head;
+}
 
+/**
+ * The rating per ranked game played.
+ * @param {any} profile
+ */
+function ratingsPanel(profile) {
   const ratings = el('section', { class: 'panel' });
   ratings.append(el('h2', {}, 'Ratings'));
   const table = el('table', { class: 'standings', 'data-testid': 'profile-ratings' });
@@ -77,11 +97,18 @@ export async function startProfile(playerId) {
   }
   ratings.append(table, el('p', { class: 'muted small' },
     'A rating marked ? is provisional: too few recent ranked games to be sure.'));
+  return ratings;
+}
 
+/**
+ * The recent ranked matches with the rating change of each.
+ * @param {any[]} matches
+ */
+function recentPanel(matches) {
   const recent = el('section', { class: 'panel' });
   recent.append(el('h2', {}, 'Recent ranked matches'));
   const list = el('ul', { class: 'rooms', 'data-testid': 'profile-recent' });
-  for (const m of profile.recent) {
+  for (const m of matches) {
     const li = el('li', { 'data-testid': 'recent-match' });
     const what = el('div', { class: 'what' });
     const change = m.rating_after !== null && m.rating_before !== null
@@ -97,12 +124,19 @@ export async function startProfile(playerId) {
     list.append(li);
   }
   recent.append(list);
-  if (!profile.recent.length) recent.append(el('p', { class: 'muted' }, 'No ranked match yet.'));
+  if (!matches.length) recent.append(el('p', { class: 'muted' }, 'No ranked match yet.'));
+  return recent;
+}
 
+/**
+ * Every recent match in the player's seats.
+ * @param {any[]} matches
+ */
+function matchesPanel(matches) {
   const played = el('section', { class: 'panel' });
   played.append(el('h2', {}, 'Matches'));
   const games = el('ul', { class: 'rooms', 'data-testid': 'profile-matches' });
-  for (const m of profile.matches) {
+  for (const m of matches) {
     const li = el('li', { 'data-testid': 'played-match' });
     const what = el('div', { class: 'what' });
     const result = m.won === null ? (m.status === 'abandoned' ? 'Abandoned' : 'In play')
@@ -116,10 +150,6 @@ export async function startProfile(playerId) {
     games.append(li);
   }
   played.append(games);
-  if (!profile.matches.length) played.append(el('p', { class: 'muted' }, 'No match yet.'));
-
-  const nav = el('p', { class: 'small' });
-  nav.append(el('a', { href: '/' }, '← Lobby'), ' · ',
-    el('a', { href: '/leaderboard' }, 'Leaderboard'));
-  root.replaceChildren(nav, head, ratings, recent, played);
+  if (!matches.length) played.append(el('p', { class: 'muted' }, 'No match yet.'));
+  return played;
 }

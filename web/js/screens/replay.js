@@ -4,21 +4,18 @@
  * Each stored shot starts from the table as it was before it (`shots[k].b`); the server
  * simulates it again from its stored start state and streams it like the live one
  * (`GET /api/matches/{id}/shots/{n}/replay`, one JSON message a line, paced at the chosen
- * speed). The messages go through the live table's reducer and the shared shot playback
- * (frames, sounds, pocketed balls), so a replay looks and sounds exactly like the game did.
- * The stream's tick rate comes with the match (`stream`). Shots follow each other while
- * playing; Stop puts the shot back at its start; previous/next move by one shot.
+ * speed). The messages go into the live table's view (tableview.js: its reducer, its shot
+ * playback with frames, sounds and pocketed balls, its drawing), so a replay looks and
+ * sounds exactly like the game did. The stream's tick rate comes with the match (`stream`).
+ * Shots follow each other while playing; Stop puts the shot back at its start;
+ * previous/next move by one shot.
  */
 
 import { api, memory, readNdjson } from '../net.js';
-import { initialState, reduce, decodeBalls } from '../state.js';
-import { readStream } from '../limits.js';
-import { ShotPlayback } from '../playback.js';
-import { CELS } from '../sprites.js';
-import { drawBalls, drawSinking, drawCue } from '../render.js';
-import { DEFAULT_LIMITS } from '../limits.js';
-import { TableAudio } from '../audio.js';
-import { TableCanvas } from '../tablecanvas.js';
+import { initialState, decodeBalls } from '../state.js';
+import { readStream, DEFAULT_LIMITS } from '../limits.js';
+import { drawCue } from '../render.js';
+import { TableView } from '../tableview.js';
 import { $, $select, bindMute, setText, matchLine } from '../ui.js';
 import { startLoop } from '../loop.js';
 
@@ -28,38 +25,71 @@ const PAUSE_BETWEEN_SHOTS = 0.8; // seconds the table rests before the next shot
 export function startReplay(matchId) {
   $('replay').hidden = false;
   document.title = 'Pool online · replay';
-  const surface = new TableCanvas(/** @type {HTMLCanvasElement} */ ($('replay-table')),
-    $('replay-wrap'));
-  const audio = new TableAudio();
-  audio.setMuted(memory.muted());
-  const playback = new ShotPlayback({ cels: CELS, delay: 0.1,
-    onSound: (sound, speed) => audio.play(sound, speed) });
-  /** @type {any} the match detail (`GET /api/matches/{id}`) */
-  let match = null;
-  let stream = readStream(null); // the pacing of the stored shots' stream
-  let index = 0;
-  let playing = false;
-  let speed = 1;
-  /** @type {{abort: AbortController, done: boolean, outcome: string} | null} */
-  let shotStream = null; // the shot being streamed
-  let generation = 0;
-  /** @type {number | null} when the current shot finished playing */
-  let restSince = null;
-  let state = initialState({ stream });
-  let struck = false; // the shot shown has started moving (the cue is drawn until then)
+  const replay = new Replay(matchId);
+  bindReplayControls(replay);
+  startLoop((dt, now) => {
+    replay.update(dt, now);
+    replay.draw(now);
+  });
+  replay.load();
+  /** @type {any} */ (window).__replay = testHook(replay);
+}
 
-  /** @param {string} text */
-  const showError = (text) => {
-    const el = $('replay-error');
-    el.textContent = text;
-    el.hidden = !text;
+/** @param {Replay} replay */
+function bindReplayControls(replay) {
+  $('replay-play').addEventListener('click', () => replay.toggle());
+  $('replay-prev').addEventListener('click', () => replay.show(replay.index - 1));
+  $('replay-next').addEventListener('click', () => replay.show(replay.index + 1));
+  $('replay-speed').addEventListener('change', () => {
+    replay.setSpeed(Number($select('replay-speed').value) || 1);
+  });
+  bindMute($('replay-mute'), replay.view.audio, (muted) => memory.setMuted(muted));
+}
+
+/**
+ * Read-only hook for automated tests and debugging.
+ * @param {Replay} replay
+ */
+function testHook(replay) {
+  return {
+    get match() { return replay.match; },
+    get index() { return replay.index; },
+    get playing() { return replay.playing; },
+    get framesSeen() { return replay.view.playback.framesSeen; },
+    get balls() { return replay.view.ballList(); },
+    get ready() { return replay.view.ready; },
+    get cueDrawn() { return !replay.struck; },
   };
-  const playButton = $('replay-play');
-  const showPlaying = () => { playButton.textContent = playing ? 'Stop' : 'Play'; };
+}
 
-  async function load() {
+/**
+ * A finished match on the table view: `load`, then `show` a shot (streamed when playing);
+ * the display loop calls `update` (the playback, the next shot after a pause) and `draw`.
+ */
+class Replay {
+  /** @param {string} matchId */
+  constructor(matchId) {
+    this.matchId = matchId;
+    this.stream = readStream(null); // the pacing of the stored shots' stream
+    this.view = new TableView(/** @type {HTMLCanvasElement} */ ($('replay-table')),
+      $('replay-wrap'), initialState({ stream: this.stream }));
+    /** @type {any} the match detail (`GET /api/matches/{id}`) */
+    this.match = null;
+    this.index = 0;
+    this.playing = false;
+    this.speed = 1;
+    /** @type {{abort: AbortController, done: boolean, outcome: string} | null} */
+    this.shotStream = null; // the shot being streamed
+    this.generation = 0;
+    /** @type {number | null} when the current shot finished playing */
+    this.restSince = null;
+    this.struck = false; // the shot shown has started moving (the cue is drawn until then)
+    this.playButton = $('replay-play');
+  }
+
+  async load() {
     try {
-      match = await api.getMatch(matchId);
+      this.match = await api.getMatch(this.matchId);
     } catch (e) {
       const err = /** @type {import('../net.js').ApiError} */ (e);
       setText($('replay-title'), 'Replay');
@@ -67,7 +97,8 @@ export function startReplay(matchId) {
         : `Cannot load the match: ${err.message}`);
       return;
     }
-    stream = readStream(match.stream);
+    const { match } = this;
+    this.stream = readStream(match.stream);
     const game = match.game === 'nine_ball' ? '9-ball' : '8-ball';
     setText($('replay-title'), `${(match.players ?? []).join(' vs ')} · ${game}`);
     const won = match.winner_name ? ` · ${match.winner_name} won` : '';
@@ -76,147 +107,136 @@ export function startReplay(matchId) {
       showError('This match has no shots to watch.');
       return;
     }
-    playback.setTable(match.geometry);
-    show(0);
+    this.view.playback.setTable(match.geometry);
+    this.show(0);
   }
 
-  function stopStream() {
-    generation += 1;
-    shotStream?.abort.abort();
-    shotStream = null;
+  showPlaying() { this.playButton.textContent = this.playing ? 'Stop' : 'Play'; }
+
+  /** Play or Stop. */
+  toggle() {
+    this.view.audio.unlock();
+    if (!this.match?.shots.length) return;
+    this.playing = !this.playing;
+    this.showPlaying();
+    if (this.playing) {
+      const atEnd = this.shotStream?.done && this.view.playback.done;
+      this.show(atEnd && this.index + 1 < this.match.shots.length ? this.index + 1 : this.index);
+    } else this.show(this.index);
+  }
+
+  /** @param {number} speed */
+  setSpeed(speed) {
+    this.speed = speed;
+    if (this.playing) this.show(this.index);
+  }
+
+  stopStream() {
+    this.generation += 1;
+    this.shotStream?.abort.abort();
+    this.shotStream = null;
   }
 
   /**
    * Put shot k's starting table on the cloth; stream it when playing.
    * @param {number} k
    */
-  function show(k) {
+  show(k) {
+    const { match } = this;
     if (!match?.shots.length) return;
-    stopStream();
-    index = Math.min(match.shots.length - 1, Math.max(0, k));
-    const shot = match.shots[index];
-    state = initialState({ stream });
-    restSince = null;
-    playback.reset(decodeBalls(shot.b));
-    setText($('replay-shot'), `shot ${index + 1} / ${match.shots.length}`);
+    this.stopStream();
+    this.index = Math.min(match.shots.length - 1, Math.max(0, k));
+    const shot = match.shots[this.index];
+    this.view.state = initialState({ stream: this.stream });
+    this.restSince = null;
+    this.view.playback.reset(decodeBalls(shot.b));
+    setText($('replay-shot'), `shot ${this.index + 1} / ${match.shots.length}`);
     const players = match.players ?? [];
     setText($('replay-shooter'), `${players[shot.seat] ?? `Player ${shot.seat + 1}`} to play`);
     setText($('replay-at'), `game ${shot.game} · ${scoreBefore(match, shot)}`);
-    struck = false;
+    this.struck = false;
     setText($('replay-outcome'), '');
-    if (playing) play(shot);
+    if (this.playing) this.play(shot);
   }
 
   /** @param {{replay: string, outcome?: {message?: string}}} shot */
-  async function play(shot) {
-    const mine = generation;
+  async play(shot) {
+    const mine = this.generation;
     const abort = new AbortController();
     const current = { abort, done: false, outcome: shot.outcome?.message ?? '' };
-    shotStream = current;
+    this.shotStream = current;
     try {
-      const res = await fetch(`${shot.replay}?pace=${speed}`, { signal: abort.signal });
+      const res = await fetch(`${shot.replay}?pace=${this.speed}`, { signal: abort.signal });
       if (!res.ok) throw new Error(`the server answered ${res.status}`);
-      await readNdjson(res, (msg) => { if (mine === generation) receive(msg); });
-      if (mine === generation) current.done = true;
+      await readNdjson(res, (msg) => { if (mine === this.generation) this.receive(msg); });
+      if (mine === this.generation) current.done = true;
     } catch (e) {
-      if ((e instanceof Error && e.name === 'AbortError') || mine !== generation) return;
+      if ((e instanceof Error && e.name === 'AbortError') || mine !== this.generation) return;
       showError(`Cannot replay this shot: ${e instanceof Error ? e.message : String(e)}`);
-      playing = false;
-      showPlaying();
+      this.playing = false;
+      this.showPlaying();
     }
   }
 
   /** @param {Record<string, any>} msg */
-  function receive(msg) {
+  receive(msg) {
     const now = performance.now() / 1000;
     if (msg.type === 'shot_result') {
-      if (shotStream) shotStream.outcome = msg.outcome?.message ?? shotStream.outcome;
+      if (this.shotStream) this.shotStream.outcome = msg.outcome?.message ?? this.shotStream.outcome;
       return;
     }
-    const res = reduce(state, msg, now);
-    state = res.state;
-    for (const e of res.effects) {
-      if (e.kind === 'frame') struck = true;
-      playback.apply(e, now);
-    }
+    this.view.play(this.view.receive(msg, now), now);
   }
 
   /**
    * @param {number} dt
    * @param {number} now
    */
-  function update(dt, now) {
-    playback.update(dt, now, speed);
-    if (!playing || !shotStream?.done || !playback.done) return;
-    if (restSince === null) {
-      restSince = now;
-      setText($('replay-outcome'), shotStream.outcome);
-    } else if (now - restSince > PAUSE_BETWEEN_SHOTS / speed) {
-      if (index + 1 < match.shots.length) show(index + 1);
-      else { playing = false; showPlaying(); }
+  update(dt, now) {
+    this.view.update(dt, now, this.speed);
+    if (!this.playing || !this.shotStream?.done || !this.view.playback.done) return;
+    if (this.restSince === null) {
+      this.restSince = now;
+      setText($('replay-outcome'), this.shotStream.outcome);
+    } else if (now - this.restSince > PAUSE_BETWEEN_SHOTS / this.speed) {
+      if (this.index + 1 < this.match.shots.length) this.show(this.index + 1);
+      else { this.playing = false; this.showPlaying(); }
     }
   }
 
   /** @param {number} now */
-  function draw(now) {
-    if (!surface.layout(match?.geometry)) return;
-    const ctx = surface.begin();
-    const { view, sprites, dpr } = surface;
-    if (!sprites) return;
-    drawBalls(ctx, view, sprites, playback.balls, 1 / dpr);
-    for (const s of playback.sinking.list) drawSinking(ctx, view, sprites, s, now, 1 / dpr);
+  draw(now) {
+    const { match, view } = this;
+    const frame = view.begin(match?.geometry);
+    if (!frame) return;
+    view.drawBalls(frame, now);
     // The cue, as it was lined up for the shot, until the cue ball moves.
-    const shot = match?.shots[index];
-    const cueBall = playback.balls.get(0);
-    struck = struck || playback.framesSeen > 0;
-    if (!struck && shot?.shot && cueBall) {
+    const shot = match.shots[this.index];
+    const cueBall = view.playback.balls.get(0);
+    this.struck = this.struck || view.playback.framesSeen > 0;
+    if (!this.struck && shot?.shot && cueBall) {
       const power = Math.min(1, (shot.shot.speed ?? 0) / DEFAULT_LIMITS.max_speed);
-      drawCue(ctx, view, match.geometry, [cueBall.x, cueBall.y], shot.shot.angle, power * 0.5);
+      drawCue(frame.ctx, frame.view, match.geometry, [cueBall.x, cueBall.y], shot.shot.angle,
+        power * 0.5);
     }
   }
+}
 
-  playButton.addEventListener('click', () => {
-    audio.unlock();
-    if (!match?.shots.length) return;
-    playing = !playing;
-    showPlaying();
-    if (playing) {
-      const atEnd = shotStream?.done && playback.done;
-      show(atEnd && index + 1 < match.shots.length ? index + 1 : index);
-    } else show(index);
-  });
-  $('replay-prev').addEventListener('click', () => show(index - 1));
-  $('replay-next').addEventListener('click', () => show(index + 1));
-  $('replay-speed').addEventListener('change', () => {
-    speed = Number($select('replay-speed').value) || 1;
-    if (playing) show(index);
-  });
-  bindMute($('replay-mute'), audio, (muted) => memory.setMuted(muted));
-  startLoop((dt, now) => { update(dt, now); draw(now); });
-  load();
+/** @param {string} text */
+function showError(text) {
+  const el = $('replay-error');
+  el.textContent = text;
+  el.hidden = !text;
+}
 
-  /**
-   * "Ana 1 – 0 Ben": the score when stored shot `shot` was played (games won before its game).
-   * @param {any} m the match
-   * @param {any} shot
-   */
-  function scoreBefore(m, shot) {
-    const players = m.players ?? [];
-    const won = [0, 1].map((seat) => (m.games ?? []).filter((/** @type {any} */ g) =>
-      g.n < shot.game && g.winner === seat).length);
-    return `${players[0] ?? '?'} ${won[0]} – ${won[1]} ${players[1] ?? '?'}`;
-  }
-
-  // Read-only hook for automated tests and debugging.
-  /** @type {any} */ (window).__replay = {
-    get match() { return match; },
-    get index() { return index; },
-    get playing() { return playing; },
-    get framesSeen() { return playback.framesSeen; },
-    get balls() {
-      return [...playback.balls].map(([id, b]) => ({ id, x: b.x, y: b.y, cel: b.cel }));
-    },
-    get ready() { return !!(surface.view && surface.sprites); },
-    get cueDrawn() { return !struck; },
-  };
+/**
+ * "Ana 1 – 0 Ben": the score when stored shot `shot` was played (games won before its game).
+ * @param {any} m the match
+ * @param {any} shot
+ */
+function scoreBefore(m, shot) {
+  const players = m.players ?? [];
+  const won = [0, 1].map((seat) => (m.games ?? []).filter((/** @type {any} */ g) =>
+    g.n < shot.game && g.winner === seat).length);
+  return `${players[0] ?? '?'} ${won[0]} – ${won[1]} ${players[1] ?? '?'}`;
 }
