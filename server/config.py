@@ -104,6 +104,9 @@ class Settings(BaseSettings):
     # started after the page was served (else only the processes live then).
     socket_origins: Annotated[tuple[SocketOrigin, ...], NoDecode] = ()
     max_message: Annotated[int, Field(ge=256, le=1024 * KIB)] = 16 * KIB
+    # An HTTP request body larger than this is refused (413) before it is read or parsed:
+    # every body the API takes is a small JSON object.
+    max_body_bytes: Annotated[int, Field(ge=1 * KIB, le=16 * 1024 * KIB)] = 64 * KIB
     send_queue: Annotated[int, Field(ge=4, le=100_000)] = 64  # messages waiting for a client
     # A client that cannot take what is queued for this long is dropped.
     send_timeout: PositiveSeconds = 5.0
