@@ -23,7 +23,7 @@ import signal
 import threading
 import time
 import weakref
-from collections.abc import Callable
+from collections.abc import Callable, Hashable
 from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
@@ -38,6 +38,7 @@ from server.engine import Shot
 from server.priority import process_stat, run_when_idle
 
 from .errors import ActionError
+from .planner_share import planner_share
 from .room import Room
 
 log = logging.getLogger(__name__)
@@ -273,9 +274,10 @@ class ComputerSeat:
         game = to_data(match.game)  # the search works on its own copy
         started = asyncio.get_running_loop().time()
         try:
-            turn = await plan_turn(
-                self.level, self.bot.seed, game, self.seat, self.workers, self.starved
-            )
+            with planner_share(self.workers).computer_planning():  # hints wait meanwhile
+                turn = await plan_turn(
+                    self.level, self.bot.seed, game, self.seat, self.workers, self.starved
+                )
         except Exception:
             log.exception("room %s: the computer could not plan", self.room.room_id)
             return False
@@ -303,13 +305,42 @@ class ComputerSeat:
 
 
 HINT_LEVEL = Bot.LEVELS[-1]  # "Show me a shot" shows what the strongest level would play
-_hinting: set[str] = set()  # rooms with a hint being planned (one at a time each)
+HINT_QUEUE = 8  # hints that may wait for the planners (`POOL_HINT_QUEUE`)
+HINT_WAIT = 15.0  # s a hint may wait for them before it is refused (`POOL_HINT_WAIT`)
 
 
-async def hint(room: Room, token: str, workers: int, starved: float = STARVED_AFTER) -> Turn:
+@dataclass(frozen=True)
+class HintAsk:
+    """Who asks for a hint, and how long they may wait: `requester` names them beyond the
+    table (("address", ip), ("player", id)), each holding one hint at a time."""
+
+    requester: tuple[Hashable, ...] = ()
+    max_waiting: int = HINT_QUEUE
+    max_wait: float = HINT_WAIT
+
+
+async def hint(
+    room: Room, token: str, workers: int, starved: float = STARVED_AFTER, ask: HintAsk = HintAsk()
+) -> Turn:
     """The strongest level's turn for the player of a practice table, planned off the event
     loop and not taken (the learner sees the ghost ball, aim, power and spin). One hint at
-    a time per table, so a player cannot queue up the planners' time."""
+    a time per table and per requester, after the rooms' computer turns
+    (`planner_share`), so that nobody can queue up the planners' time."""
+    seat = _hint_seat(room, token)
+
+    async def plan() -> Turn:
+        match = room.match
+        if match is None or _hint_seat(room, token) != seat:
+            raise ActionError("not_your_turn", "The table changed while the hint waited.")
+        return await plan_turn(HINT_LEVEL, room.seed, to_data(match.game), seat, workers, starved)
+
+    keys = (("room", room.room_id), *ask.requester)
+    share = planner_share(workers)
+    return await share.hint(keys, plan, max_waiting=ask.max_waiting, max_wait=ask.max_wait)
+
+
+def _hint_seat(room: Room, token: str) -> int:
+    """The seat of `token` if a hint may be planned for it now, else the refusal."""
     seat = room.seat_of(token)
     if seat is None:
         raise ActionError("bad_token", "This token does not open a seat at this table.")
@@ -318,10 +349,4 @@ async def hint(room: Room, token: str, workers: int, starved: float = STARVED_AF
     match = room.match
     if match is None or room.acting_seat() != seat or match.game.decision is not None:
         raise ActionError("not_your_turn", "A hint is for a table at rest, your shot to play.")
-    if room.room_id in _hinting:
-        raise ActionError("hint_pending", "A hint for this table is on its way already.")
-    _hinting.add(room.room_id)
-    try:
-        return await plan_turn(HINT_LEVEL, room.seed, to_data(match.game), seat, workers, starved)
-    finally:
-        _hinting.discard(room.room_id)
+    return seat
