@@ -63,6 +63,7 @@ def main(argv: list[str] | None = None) -> None:
     config = uvicorn_config(
         create_app(settings), args.host, args.port, settings, log_level=args.log_level
     )
+    logs.hold_repeats()  # an outage's error once a minute with a count, not once a second
     warm_up(settings.frame_every)
     # `kill -USR1 <pid>` prints every thread's stack to stderr: what a stuck process is doing.
     faulthandler.register(signal.SIGUSR1, all_threads=True)
