@@ -190,3 +190,10 @@ def test_every_api_module_is_transport(path: Path):
         ]
     else:
         assert imported & {"fastapi", "starlette"}, f"{path.name} imports neither"
+
+
+def test_only_deps_reads_the_app_state():
+    """Routes name what they need (`server.api.deps` aliases) instead of reading
+    `app.state` in their bodies."""
+    readers = [p.name for p in API.glob("*.py") if "app.state" in p.read_text()]
+    assert readers == ["deps.py"]
