@@ -12,14 +12,24 @@ from fastapi.responses import FileResponse
 from fastapi.staticfiles import StaticFiles
 
 from server.api.headers import SecurityHeaders
-from server.api.http import router as http_router
 from server.api.matches import router as matches_router
-from server.api.players import install as install_players
+from server.api.meta import router as meta_router
+from server.api.owner import answer_calls
+from server.api.players import router as players_router
 from server.api.quotas import ClientQuotas
-from server.api.routing import install as install_calls
+from server.api.rooms import router as rooms_router
 from server.api.ws import router as ws_router
 from server.cluster import Cluster
 from server.config import Settings
+from server.ladder import (
+    ClusterMatchmaker,
+    Matchmaker,
+    PlayerData,
+    PlayNow,
+    RankedResults,
+    RankedTables,
+)
+from server.players import Window
 from server.rooms import Clock, RoomRegistry, SeedSource, StoreObserver
 from server.rooms.clock import SYSTEM_CLOCK
 from server.rooms.computer import close_planners, open_planners
@@ -53,6 +63,11 @@ def create_app(
     cluster = Cluster(settings, registry, store) if settings.redis_url is not None else None
     if cluster is not None and isinstance(observer, StoreObserver):
         observer.use_cluster(cluster.match_ids, cluster.epoch_of, cluster.stale)
+    players = PlayerData(store)
+    results = RankedResults(
+        registry, players, observer.match_id if isinstance(observer, StoreObserver) else None
+    )
+    matchmaker = pick_matchmaker(registry, results, cluster)
 
     @contextlib.asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
@@ -106,15 +121,32 @@ def create_app(
     app.state.quotas = ClientQuotas(settings)
     app.state.store = store
     app.state.cluster = cluster
+    app.state.players = players
+    app.state.matchmaker = matchmaker
+    app.state.ranked_tables = RankedTables(results)
     if cluster is not None:
-        install_calls(app, cluster)
-    app.include_router(http_router)
-    app.include_router(matches_router)
-    app.include_router(ws_router)
-    match_ids = observer.match_id if isinstance(observer, StoreObserver) else None
-    matchmaker = install_players(app, registry, store, match_ids, cluster)
+        answer_calls(cluster, registry, settings)
+    for router in (meta_router, rooms_router, matches_router, ws_router, players_router):
+        app.include_router(router)
     _serve_web(app, settings.web_dir)
     return app
+
+
+def pick_matchmaker(
+    registry: RoomRegistry, results: RankedResults, cluster: Cluster | None
+) -> PlayNow:
+    """The Play now queue: in this process, or in Redis in cluster mode. The lifespan
+    starts its `run` and calls its `resume` after the rooms are restored."""
+    settings = registry.settings
+    window = Window(
+        settings.playnow_window,
+        settings.playnow_widen,
+        settings.playnow_window_max,
+        settings.playnow_computer_after,
+    )
+    if cluster is None:
+        return Matchmaker(registry, results, window)
+    return ClusterMatchmaker(registry, results, window, cluster)
 
 
 def page_sockets(settings: Settings, cluster: Cluster | None) -> Callable[[], Iterable[str]] | None:

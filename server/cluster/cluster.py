@@ -28,6 +28,7 @@ from server.rooms import LiveRoom, RoomRegistry
 from server.store import Database, RoomSnapshot, StaleOwner
 
 from . import keys, scripts
+from .background import Background
 from .calls import Inbox, Unreachable
 from .directory import Directory
 from .match_ids import MatchIds
@@ -73,6 +74,7 @@ class Cluster:
         self._taking: set[str] = set()
         self._recovering: asyncio.Task | None = None
         self._opening: dict[str, asyncio.Task[None]] = {}  # rooms being registered
+        self._clearing = Background()  # the shared entries of rooms closed here
         self._peers_seen = 0.0  # loop time `peers` was last refreshed out of turn
         self._acquire = self.redis.register_script(scripts.ACQUIRE)
         self._renew = self.redis.register_script(scripts.RENEW)
@@ -311,7 +313,7 @@ class Cluster:
         if epoch is not None:
             loop = asyncio.get_running_loop()
             loop.call_soon(self.epochs.pop, room_id, None)
-            loop.create_task(self._clear(room_id, epoch))
+            self._clearing.start(self._clear(room_id, epoch))
 
     async def _clear(self, room_id: str, epoch: int) -> None:
         with contextlib.suppress(RedisError):

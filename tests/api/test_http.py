@@ -135,6 +135,23 @@ def test_show_room_and_unknown_room(client):
     assert client.post("/api/rooms/nosuchroom00/join", json={"name": "A"}).status_code == 404
 
 
+def test_an_unknown_room_is_refused_after_the_body_and_the_quota(settings):
+    """Every route about one room answers 404 `unknown_room` the same way, and only once
+    its body is valid (422 first) and the client is within its quota (429 first)."""
+    with make_client(settings, join_rate="1/minute") as client:
+        hint = client.post("/api/rooms/nosuchroom00/hint", json={"token": "t"})
+        assert hint.status_code == 404
+        assert hint.json() == {"detail": {"code": "unknown_room", "message": "No such room."}}
+        assert client.post("/api/rooms/nosuchroom00/hint", json={}).status_code == 422
+        assert client.post("/api/rooms/nosuchroom00/join", json={"name": ""}).status_code == 422
+        joined = client.post("/api/rooms/nosuchroom00/join", json={"name": "A"})
+        assert joined.status_code == 404
+        assert joined.json() == hint.json()
+        again = client.post("/api/rooms/nosuchroom00/join", json={"name": "A"})
+        assert again.status_code == 429
+        assert again.json()["detail"]["code"] == "rate_limited"
+
+
 def test_join_gives_seats_then_refuses_the_third(client):
     room_id = create_room(client)
     a = join(client, room_id, "  Ana  ")

@@ -42,9 +42,10 @@ import pytest
 from fastapi.routing import APIRoute
 from pydantic import BaseModel, TypeAdapter, ValidationError
 
-from server.api.http import router as http_router
 from server.api.matches import router as matches_router
+from server.api.meta import router as meta_router
 from server.api.players import router as players_router
+from server.api.rooms import router as rooms_router
 from server.api.schemas import ErrorResponse
 from server.config import Settings
 from server.engine import TICK_HZ
@@ -218,7 +219,7 @@ def required_names(cls: Any, seen: set[Any]) -> dict[str, str]:
 def api_routes() -> list[APIRoute]:
     return [
         r
-        for router in (http_router, matches_router, players_router)
+        for router in (meta_router, rooms_router, matches_router, players_router)
         for r in router.routes
         if isinstance(r, APIRoute)
     ]
