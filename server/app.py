@@ -5,6 +5,7 @@ from __future__ import annotations
 import asyncio
 import contextlib
 from collections.abc import AsyncIterator, Callable, Iterable
+from dataclasses import dataclass
 from pathlib import Path
 
 from fastapi import FastAPI, HTTPException
@@ -68,44 +69,7 @@ def create_app(
         registry, players, observer.match_id if isinstance(observer, StoreObserver) else None
     )
     matchmaker = pick_matchmaker(registry, results, cluster)
-
-    @contextlib.asynccontextmanager
-    async def lifespan(app: FastAPI) -> AsyncIterator[None]:
-        await registry.runner.start()
-        open_planners()
-        store.open()
-        if isinstance(observer, StoreObserver):
-            observer.start()
-        if cluster is not None:
-            await cluster.start()
-        elif isinstance(observer, StoreObserver):
-            registry.restore(await store.call(lambda repo: repo.rooms()))
-        await matchmaker.resume()
-        background = [
-            asyncio.create_task(registry.run_sweeper()),
-            asyncio.create_task(registry.run_watchdog()),
-            asyncio.create_task(matchmaker.run()),
-        ]
-        try:
-            yield
-        finally:
-            for task in background:
-                task.cancel()
-                with contextlib.suppress(asyncio.CancelledError):
-                    await task
-            if isinstance(observer, StoreObserver):
-                observer.stop()  # the saved rooms stay saved for the next start
-            registry.close_all(CLOSE_RESTART, "server_restart")
-            await asyncio.sleep(0)  # let the senders see the close
-            if cluster is not None:
-                await store.call(lambda repo: None)  # every room's last write is stored
-                with contextlib.suppress(Exception):  # Redis gone: leases simply expire
-                    await cluster.drain()
-                await cluster.stop()
-            await asyncio.to_thread(store.close)  # every queued write is on disk
-            registry.runner.close()
-            await asyncio.to_thread(close_planners)
-
+    lifespan = _Lifespan(registry, store, observer, cluster, matchmaker)
     app = FastAPI(
         title="Pool online",
         version="1.0",
@@ -130,6 +94,63 @@ def create_app(
         app.include_router(router)
     _serve_web(app, settings.web_dir)
     return app
+
+
+@dataclass
+class _Lifespan:
+    """What the app starts and stops around serving: the shot runner, the planners, the
+    store, the saved rooms (or the cluster's share of them), Play now and the sweepers."""
+
+    registry: RoomRegistry
+    store: Database
+    observer: RoomObserver
+    cluster: Cluster | None
+    matchmaker: PlayNow
+
+    @contextlib.asynccontextmanager
+    async def __call__(self, app: FastAPI) -> AsyncIterator[None]:  # noqa: ARG002 (FastAPI's signature)
+        await self._start()
+        background = [
+            asyncio.create_task(self.registry.run_sweeper()),
+            asyncio.create_task(self.registry.run_watchdog()),
+            asyncio.create_task(self.matchmaker.run()),
+        ]
+        try:
+            yield
+        finally:
+            for task in background:
+                task.cancel()
+                with contextlib.suppress(asyncio.CancelledError):
+                    await task
+            await self._stop()
+
+    async def _start(self) -> None:
+        registry, store, observer = self.registry, self.store, self.observer
+        await registry.runner.start()
+        open_planners()
+        store.open()
+        if isinstance(observer, StoreObserver):
+            observer.start()
+        if self.cluster is not None:
+            await self.cluster.start()
+        elif isinstance(observer, StoreObserver):
+            registry.restore(await store.call(lambda repo: repo.rooms()))
+        await self.matchmaker.resume()
+
+    async def _stop(self) -> None:
+        registry, store = self.registry, self.store
+        if isinstance(self.observer, StoreObserver):
+            self.observer.stop()  # the saved rooms stay saved for the next start
+        registry.close_all(CLOSE_RESTART, "server_restart")
+        await asyncio.sleep(0)  # let the senders see the close
+        if self.cluster is not None:
+            await store.call(lambda _repo: None)  # every room's last write is stored
+            with contextlib.suppress(Exception):  # Redis gone: leases simply expire
+                await self.cluster.drain()
+            await self.cluster.stop()
+        await asyncio.to_thread(store.close)  # every queued write is on disk
+        registry.runner.close()
+        await asyncio.to_thread(close_planners)
 
 
 def pick_matchmaker(

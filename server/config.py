@@ -26,6 +26,7 @@ from pydantic_settings import (
     SettingsConfigDict,
 )
 from pydantic_settings.sources.utils import parse_env_vars
+from typing_extensions import override
 
 KIB = 1024
 REPO_ROOT = Path(__file__).resolve().parent.parent
@@ -187,6 +188,7 @@ class Settings(BaseSettings):
         return value
 
     @classmethod
+    @override
     def settings_customise_sources(
         cls,
         settings_cls: type[BaseSettings],

@@ -189,6 +189,20 @@ class Cluster:
         wanted = [r for r in room_ids if r not in self.epochs and r not in self._taking]
         if not wanted:
             return []
+        taken = await self._lease(wanted, source)
+        if not taken:
+            return []
+        try:
+            restored = await self._adopt(taken, source)
+        finally:
+            self._taking.difference_update(taken)
+        if restored:
+            log.info("cluster: took over %d rooms (from %s)", len(restored), source or "?")
+        return restored
+
+    async def _lease(self, wanted: list[str], source: str | None) -> dict[str, int]:
+        """The leases of `wanted` this process won, with their new epochs (each marked as
+        being taken)."""
         # The epochs the store has seen: a new one must be above them even if Redis lost
         # its counter (else an old owner's epoch could come round again).
         floors = await self.store.call(lambda repo: {r: repo.room_epoch(r) or 0 for r in wanted})
@@ -207,33 +221,30 @@ class Cluster:
                 continue
             self._taking.add(room_id)
             taken[room_id] = int(epoch)
-        if not taken:
-            return []
-        restored: list[str] = []
-        try:
-            claimed = {}
-            for room_id, epoch in taken.items():
-                try:
-                    claimed[room_id] = await self._claim(room_id, epoch)
-                except StaleOwner:
-                    log.warning("cluster: room %s has a newer owner than %d", room_id, epoch)
-                except Exception as exc:  # the store out of reach: a later heartbeat
-                    log.warning("cluster: room %s not claimed: %s", room_id, exc)
+        return taken
+
+    async def _adopt(self, taken: dict[str, int], source: str | None) -> list[str]:
+        """Claim the leased rooms in the store and restore them here; returns those now
+        played here (a lease given back for each that could not be)."""
+        claimed = {}
+        for room_id, epoch in taken.items():
             try:
-                snaps = await self.store.call(
-                    lambda repo: [s for r in claimed if (s := repo.room(r)) is not None]
-                )
-            except Exception:
-                for room_id, epoch in claimed.items():
-                    await self._let_go(room_id, epoch)
-                raise
-            restored = self._restore(snaps, claimed)
-            gone = [r for r in claimed if r not in restored]
-            await self._settle(restored, gone, source)
-        finally:
-            self._taking.difference_update(taken)
-        if restored:
-            log.info("cluster: took over %d rooms (from %s)", len(restored), source or "?")
+                claimed[room_id] = await self._claim(room_id, epoch)
+            except StaleOwner:
+                log.warning("cluster: room %s has a newer owner than %d", room_id, epoch)
+            except Exception as exc:  # the store out of reach: a later heartbeat
+                log.warning("cluster: room %s not claimed: %s", room_id, exc)
+        try:
+            snaps = await self.store.call(
+                lambda repo: [s for r in claimed if (s := repo.room(r)) is not None]
+            )
+        except Exception:
+            for room_id, epoch in claimed.items():
+                await self._let_go(room_id, epoch)
+            raise
+        restored = self._restore(snaps, claimed)
+        gone = [r for r in claimed if r not in restored]
+        await self._settle(restored, gone, source)
         return restored
 
     def _restore(self, snaps: list[RoomSnapshot], epochs: dict[str, int]) -> list[str]:

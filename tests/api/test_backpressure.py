@@ -25,7 +25,7 @@ def spectator_connection(client, room_id):
     return live, conn
 
 
-async def _never_returns(text: str) -> None:
+async def _never_returns(_text: str) -> None:
     await asyncio.Event().wait()
 
 
@@ -65,7 +65,7 @@ def test_slow_spectator_loses_aim_relays_first_never_the_shot(settings):
         with connect(client, room_id, ta) as a, connect(client, room_id) as s:
             greet(a)
             greet(s)
-            live, slow = spectator_connection(client, room_id)
+            _, slow = spectator_connection(client, room_id)
             fast_text, fast_bytes = slow.send_text, slow.send_bytes
             released = threading.Event()
 
