@@ -65,10 +65,10 @@ class StoredShot(BaseModel):
     shot_id: int
     game: int
     seat: int
-    shot: dict
+    shot: dict[str, Any]
     table: list[float]
-    balls: dict
-    outcome: dict
+    balls: dict[str, Any]
+    outcome: dict[str, Any]
     played_at: float
     replay: str
     engine: str | None  # the engine version that played it (None: not recorded)
@@ -78,7 +78,8 @@ class StoredShot(BaseModel):
 class MatchDetail(MatchBase):
     games: list[GameSummary]
     shots: list[StoredShot]
-    geometry: dict | None  # the table as `state.table` gives it (to draw a replay); None: no shot
+    # the table as `state.table` gives it (to draw a replay); None: no shot
+    geometry: dict[str, Any] | None
     stream: StreamRates  # how a replay is streamed (tick rate and frames)
 
 
@@ -151,7 +152,7 @@ def _shot_row(shot: ShotRecord) -> dict[str, Any]:
     }
 
 
-def _resting_rows(balls: dict) -> list[BallRow]:
+def _resting_rows(balls: dict[str, Any]) -> list[BallRow]:
     """The stored balls (exact floats) in the stream's integer rows, cel from the roll."""
     state = BallSet.from_dict(balls)
     return frame_rows(state.ids, state.positions, state.cels(), state.on_table)

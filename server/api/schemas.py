@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
@@ -76,7 +76,7 @@ class RoomList(BaseModel):
 
 
 class RoomDetail(RoomSummary):
-    state: dict
+    state: dict[str, Any]
     ws_url: str  # where to connect for this room now
 
 

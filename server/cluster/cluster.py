@@ -70,9 +70,9 @@ class Cluster:
         self.match_ids = MatchIds(store)
         self.peers: dict[str, str] = {}  # live node id -> public url (last heartbeat)
         self.dead: list[str] = []  # processes that stopped announcing themselves
-        self._tasks: list[asyncio.Task] = []
+        self._tasks: list[asyncio.Task[None]] = []
         self._taking: set[str] = set()
-        self._recovering: asyncio.Task | None = None
+        self._recovering: asyncio.Task[None] | None = None
         self._opening: dict[str, asyncio.Task[None]] = {}  # rooms being registered
         self._clearing = Background()  # the shared entries of rooms closed here
         self._peers_seen = 0.0  # loop time `peers` was last refreshed out of turn
@@ -492,6 +492,6 @@ class Cluster:
         return await self.take(orphans)
 
 
-def _log_failure(task: asyncio.Task) -> None:
+def _log_failure(task: asyncio.Task[object]) -> None:
     if not task.cancelled() and task.exception() is not None:
         log.warning("cluster: a new room is not registered yet: %s", task.exception())
