@@ -115,6 +115,7 @@ class LiveRoom:
         """A member connected: replace an older socket of the same seat, send welcome,
         state, and the motion of a shot being shown (to play from now)."""
         self.touch()
+        conn.on_drop = self.metrics.skipped
         if conn.seat is not None:
             self._replace_seat(conn.seat)
         else:
