@@ -29,6 +29,7 @@ from server.protocol.inbound import (
     Shoot,
     Sync,
 )
+from server.protocol.limits import FRAMES_PER_MESSAGE
 from server.protocol.outbound import (
     AimRelay,
     ErrorMessage,
@@ -146,7 +147,7 @@ class LiveRoom:
             seq=self.stream.seq,
             tick_hz=TICK_HZ,
             frame_every=self.settings.frame_every,
-            frames_per_message=self.settings.frames_per_message,
+            frames_per_message=FRAMES_PER_MESSAGE,
             server_time=self.clock.wall(),
             limits=LIMITS,
         )
