@@ -16,7 +16,7 @@ from .room import Room
 from .stream import RoomStream
 
 
-class Table(Protocol):
+class Actions(Protocol):
     """What the live room does with a computer's turn, as with a person's."""
 
     def changed(self) -> None:
@@ -27,10 +27,12 @@ class Table(Protocol):
 
 
 class ComputerTurns:
-    def __init__(self, room: Room, settings: Settings, stream: RoomStream, table: Table) -> None:
+    def __init__(
+        self, room: Room, settings: Settings, stream: RoomStream, actions: Actions
+    ) -> None:
         self.room = room
         self.stream = stream
-        self.table = table
+        self.actions = actions
         self.pace = settings.pace
         self.seats = {
             seat: ComputerSeat(
@@ -65,7 +67,7 @@ class ComputerTurns:
         room = self.room
         if turn.decision is not None:
             room.decide(seat, turn.decision)
-            self.table.changed()
+            self.actions.changed()
             return
         if turn.push_out:
             room.push_out(seat)
@@ -74,4 +76,4 @@ class ComputerTurns:
         if turn.call is not None and room.match is not None and room.match.game.requires_call:
             room.call_pocket(seat, turn.call)
         if shot is not None:
-            self.table.start_shot(seat, shot)
+            self.actions.start_shot(seat, shot)
