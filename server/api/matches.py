@@ -14,6 +14,7 @@ from pydantic import BaseModel
 from server.codec import from_data
 from server.engine import TICK_HZ, BallSet, Table
 from server.protocol import BallRow, StreamRates, frame_rows
+from server.protocol.limits import FRAMES_PER_MESSAGE
 from server.rooms.replay import EngineChanged, replay_motion, stream_replay
 from server.store import MatchRecord, Repository, ShotRecord
 
@@ -123,7 +124,7 @@ async def show_match(match_id: int, store: Store, settings: SettingsDep) -> dict
         "stream": StreamRates(
             tick_hz=TICK_HZ,
             frame_every=settings.frame_every,
-            frames_per_message=settings.frames_per_message,
+            frames_per_message=FRAMES_PER_MESSAGE,
         ),
     }
 

@@ -84,6 +84,14 @@ async def create_room(
                 f"{settings.min_shot_clock:g} seconds.",
             },
         )
+    if clock is not None and clock > settings.max_shot_clock:
+        raise HTTPException(
+            422,
+            {
+                "code": "bad_shot_clock",
+                "message": f"The shot clock is at most {settings.max_shot_clock:g} seconds.",
+            },
+        )
     if body.ranked:
         check_create(body.game, body.opponent, cluster, await asking_player(secret, data))
     if cluster is not None:

@@ -106,7 +106,7 @@ class StreamStats(BaseModel):
     late_p99_ms: float | None
     late_max_ms: float | None
     frames_sent: int  # since start
-    frames_skipped: int  # since start: stale when their turn came (server overloaded)
+    frames_skipped: int  # since start: messages dropped for clients that were behind
     shots: int  # shots whose stream started in the window
     start_p50_ms: float | None  # from `shoot` to the start of the shot's stream
     start_p99_ms: float | None

@@ -7,6 +7,7 @@ import re
 import pytest
 from fastapi.testclient import TestClient
 
+from server.config import Settings
 from server.rooms.clock import ManualClock
 from tests.support.games import BREAK_MESSAGE
 from tests.support.messages import greet, receive_until
@@ -72,6 +73,21 @@ def test_shot_clock_below_minimum_is_refused(settings):
         assert response.status_code == 422
         assert response.json()["detail"]["code"] == "bad_shot_clock"
         assert c.post("/api/rooms", json={"game": "eight_ball", "shot_clock": 0}).status_code == 201
+
+
+def test_shot_clock_above_the_maximum_is_refused(settings):
+    """`POOL_MAX_SHOT_CLOCK` bounds the clock a new room may ask for."""
+    bounded = Settings.from_env({"POOL_MAX_SHOT_CLOCK": "120"})
+    with make_client(settings, max_shot_clock=bounded.max_shot_clock) as c:
+        response = c.post("/api/rooms", json={"game": "eight_ball", "shot_clock": 121})
+        assert response.status_code == 422
+        assert response.json()["detail"] == {
+            "code": "bad_shot_clock",
+            "message": "The shot clock is at most 120 seconds.",
+        }
+        created = c.post("/api/rooms", json={"game": "eight_ball", "shot_clock": 120})
+        assert created.status_code == 201 and created.json()["shot_clock"] == 120.0
+        assert c.get("/api/rooms").json()["total"] == 1  # the refused one was not opened
 
 
 def test_list_rooms_shows_game_status_players_and_spectators(settings):

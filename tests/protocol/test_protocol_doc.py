@@ -50,6 +50,7 @@ from server.api.schemas import ErrorResponse
 from server.config import Settings
 from server.engine import TICK_HZ
 from server.protocol import AnyClientMessage, BadMessage, Limits, parse_client_message
+from server.protocol.limits import FRAMES_PER_MESSAGE
 from server.protocol.outbound import (
     AnyReplayMessage,
     AnyServerMessage,
@@ -441,14 +442,14 @@ def test_stream_rates_in_the_doc_are_the_defaults():
     for welcome in welcomes:
         assert welcome["tick_hz"] == TICK_HZ
         assert welcome["frame_every"] == settings.frame_every
-        assert welcome["frames_per_message"] == settings.frames_per_message
+        assert welcome["frames_per_message"] == FRAMES_PER_MESSAGE
     details = [v["stream"] for _, v, what in validated_examples() if what == "MatchDetail"]
     assert details and all(
         s
         == {
             "tick_hz": TICK_HZ,
             "frame_every": settings.frame_every,
-            "frames_per_message": settings.frames_per_message,
+            "frames_per_message": FRAMES_PER_MESSAGE,
         }
         for s in details
     )
