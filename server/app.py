@@ -12,7 +12,9 @@ from fastapi import FastAPI, HTTPException
 from fastapi.responses import FileResponse
 from fastapi.staticfiles import StaticFiles
 
+from server.api.body_limit import BodyLimit
 from server.api.headers import SecurityHeaders
+from server.api.inputs import install as install_inputs
 from server.api.matches import router as matches_router
 from server.api.meta import router as meta_router
 from server.api.owner import answer_calls
@@ -79,7 +81,9 @@ def create_app(
         docs_url=None,  # the interactive docs load scripts from a CDN; the schema stays
         redoc_url=None,
     )
+    app.add_middleware(BodyLimit, limit=settings.max_body_bytes)
     app.add_middleware(SecurityHeaders, connect=page_sockets(settings, cluster))
+    install_inputs(app)
     app.state.settings = settings
     app.state.registry = registry
     app.state.quotas = ClientQuotas(settings)

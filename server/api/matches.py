@@ -19,6 +19,7 @@ from server.rooms.replay import EngineChanged, replay_motion, stream_replay
 from server.store import MatchRecord, Repository, ShotRecord
 
 from .deps import SettingsDep, Store
+from .inputs import RowId
 from .schemas import ErrorResponse
 
 router = APIRouter()
@@ -102,7 +103,7 @@ async def recent_matches(
 @router.get(
     "/api/matches/{match_id}", response_model=MatchDetail, responses=_NOT_FOUND, tags=["history"]
 )
-async def show_match(match_id: int, store: Store, settings: SettingsDep) -> dict[str, Any]:
+async def show_match(match_id: RowId, store: Store, settings: SettingsDep) -> dict[str, Any]:
     """One match: its games (frames) and every shot, with the table before it (exact)."""
 
     def load(repo: Repository) -> Any:
@@ -172,8 +173,8 @@ def _resting_rows(balls: dict[str, Any]) -> list[BallRow]:
     tags=["history"],
 )
 async def replay_shot(
-    match_id: int,
-    n: int,
+    match_id: RowId,
+    n: RowId,
     store: Store,
     settings: SettingsDep,
     pace: Annotated[float, Query(ge=0.1, le=100, allow_inf_nan=False)] = 1.0,

@@ -2,21 +2,17 @@
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Literal
 
-from pydantic import BaseModel, Field
+from pydantic import BaseModel
 
-from server.protocol.limits import MAX_NAME
-
-from .schemas import Strict
+from .inputs import Name, StrictBody
 
 RankedGame = Literal["eight_ball", "nine_ball"]
 
 
-class Rename(Strict):
-    name: Annotated[
-        str, Field(min_length=1, max_length=MAX_NAME, description="1-24 printable characters")
-    ]
+class Rename(StrictBody):
+    name: Name
 
 
 class RatingView(BaseModel):
@@ -79,7 +75,7 @@ class Leaderboard(BaseModel):
     provisional: list[Standing]
 
 
-class PlayNow(Strict):
+class PlayNow(StrictBody):
     game: RankedGame
 
 

@@ -4,19 +4,16 @@ from __future__ import annotations
 
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator
+from pydantic import BaseModel, Field, field_validator
 
 from server.ai import LEVELS
-from server.protocol.limits import MAX_NAME
+
+from .inputs import Name, StrictBody
 
 GameKind = Literal["eight_ball", "nine_ball", "practice"]
 
 
-class Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
-
-
-class CreateRoom(Strict):
+class CreateRoom(StrictBody):
     game: GameKind
     race_to: Annotated[int, Field(ge=1, le=15)] = 1
     shot_clock: (
@@ -80,10 +77,8 @@ class RoomDetail(RoomSummary):
     ws_url: str  # where to connect for this room now
 
 
-class JoinRoom(Strict):
-    name: Annotated[
-        str, Field(min_length=1, max_length=MAX_NAME, description="1-24 printable characters")
-    ]
+class JoinRoom(StrictBody):
+    name: Name
     ranked: bool = Field(False, description="agree that a ranked table changes your rating")
 
 
