@@ -140,6 +140,11 @@ class Settings(BaseSettings):
     # priority keeping every core busy: they run at the idle class) is planned in a
     # thread instead, so that the computer still moves.
     computer_starved: Annotated[float, Field(ge=0.5, le=600.0)] = 10.0
+    # Practice hints share the planners behind the computer's turns (server/rooms/
+    # planner_share.py): at most `hint_queue` wait (more: 429 hints_busy), each at most
+    # `hint_wait` s (then 503 hint_timeout), one per table, address and player.
+    hint_queue: Annotated[int, Field(ge=0, le=1000)] = 8
+    hint_wait: Annotated[float, Field(gt=0.0, le=120.0)] = 15.0
     ws_ping_interval: PositiveSeconds = 20.0
     ws_ping_timeout: PositiveSeconds = 20.0
     # permessage-deflate: ~5x less bandwidth, but ~45 % more server CPU at 200 rooms, which

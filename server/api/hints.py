@@ -9,17 +9,27 @@ from typing import Any
 from fastapi import HTTPException
 from pydantic import BaseModel, Field
 
+from server.config import Settings
 from server.rooms import ActionError, LiveRoom
-from server.rooms.computer import HINT_LEVEL
+from server.rooms.computer import HINT_LEVEL, HintAsk
 from server.rooms.computer import hint as plan_hint
+
+from .inputs import StrictBody
 
 # A call for a hint to the room's owner waits this long: a plan takes up to about 3 s of
 # CPU, and the owner's planner processes may be busy with the computer's turns first.
 CALL_TIMEOUT = 30.0
-_STATUS = {"bad_token": 403, "not_practice": 409, "not_your_turn": 409, "hint_pending": 429}
+_STATUS = {
+    "bad_token": 403,
+    "not_practice": 409,
+    "not_your_turn": 409,
+    "hint_pending": 429,  # the table, the address or the player has a hint asked already
+    "hints_busy": 429,  # the queue of hints waiting for the planners is full
+    "hint_timeout": 503,  # the planners stayed busy with the computer's turns
+}
 
 
-class HintRequest(BaseModel):
+class HintRequest(StrictBody):
     token: str = Field(min_length=1, max_length=200, description="the seat's token")
 
 
@@ -40,11 +50,27 @@ class Hint(BaseModel):
     # "billiard" (the cue ball glances off the first ball into the one it pots)
 
 
-async def hint_for(live: LiveRoom, token: str, workers: int, starved: float) -> dict[str, Any]:
-    """The `Hint` for the seat of `token` (planned off the event loop); a refusal is raised
-    as the HTTP error the endpoint answers with."""
+def hint_ask(settings: Settings, address: str | None, player: str | None) -> HintAsk:
+    """Who asks (`requester` keys: the address, and the player when there is a profile)
+    and the queue's bounds from the settings."""
+    requester: list[tuple[str, str]] = []
+    if address is not None:
+        requester.append(("address", address))
+    if player is not None:
+        requester.append(("player", player))
+    return HintAsk(tuple(requester), settings.hint_queue, settings.hint_wait)
+
+
+async def hint_for(
+    live: LiveRoom, token: str, settings: Settings, ask: HintAsk | None = None
+) -> dict[str, Any]:
+    """The `Hint` for the seat of `token` (planned off the event loop, after the rooms'
+    computer turns); a refusal is raised as the HTTP error the endpoint answers with."""
+    workers, starved = settings.computer_workers, settings.computer_starved
     try:
-        turn = await plan_hint(live.room, token, workers, starved)
+        turn = await plan_hint(
+            live.room, token, workers, starved, ask or hint_ask(settings, None, None)
+        )
     except ActionError as exc:
         raise HTTPException(
             _STATUS.get(exc.code, 409), {"code": exc.code, "message": exc.message}

@@ -22,7 +22,7 @@ from server.config import Settings
 from server.players import seat_token
 from server.rooms import ActionError, LiveRoom, RoomRegistry
 
-from .hints import hint_for
+from .hints import hint_ask, hint_for
 from .schemas import CreateRoom
 
 log = logging.getLogger(__name__)
@@ -209,14 +209,8 @@ def answer_calls(cluster: Cluster, registry: RoomRegistry, settings: Settings) -
         return await answer(run)
 
     async def hint_here(args: dict[str, Any]) -> tuple[int, dict[str, Any]]:
-        return await answer(
-            lambda: hint_for(
-                local(args["room_id"]),
-                args["token"],
-                settings.computer_workers,
-                settings.computer_starved,
-            )
-        )
+        ask = hint_ask(settings, args.get("client"), args.get("player"))
+        return await answer(lambda: hint_for(local(args["room_id"]), args["token"], settings, ask))
 
     cluster.inbox.handlers.update(
         {"create": create, "show": show_here, "join": join_here, "hint": hint_here}

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Annotated, Any
 
-from fastapi import APIRouter, HTTPException, Query, status
+from fastapi import APIRouter, HTTPException, Query, Request, status
 
 from server.cluster import Unreachable
 from server.players import seat_key
@@ -23,7 +23,8 @@ from .deps import (
     Secret,
     SettingsDep,
 )
-from .hints import CALL_TIMEOUT, Hint, HintRequest, hint_for
+from .disconnect import unless_gone
+from .hints import CALL_TIMEOUT, Hint, HintRequest, hint_ask, hint_for
 from .players import remember_seat
 from .ranked_friends import NEEDS_AGREEMENT, asking_player, check_create
 from .schemas import (
@@ -187,18 +188,28 @@ async def join_room(
     response_model=Hint,
     responses={**_ERRORS, 403: {"model": ErrorResponse}, 429: {"model": ErrorResponse}},
 )
-async def hint(room: RoomDep, body: HintRequest, settings: SettingsDep) -> dict[str, Any]:
+async def hint(
+    room: RoomDep,
+    body: HintRequest,
+    request: Request,
+    settings: SettingsDep,
+    client: ClientId,
+    secret: Secret,
+) -> dict[str, Any]:
     """Practice: "Show me a shot". The strongest computer level plans the player's shot
-    (off the event loop, on the server that plays the table) and the plan comes back
-    without being played. 403 for a token that is not this table's, 409 when the table is
-    not practice or not at rest for the player, 429 while a hint for the table is being
-    planned."""
-    args = {"room_id": room.room_id, "token": body.token}
-    elsewhere = await room.at_owner("hint", args, timeout=CALL_TIMEOUT)
+    (off the event loop, on the server that plays the table, after the rooms' computer
+    turns) and the plan comes back without being played. 403 for a token that is not this
+    table's, 409 when the table is not practice or not at rest for the player, 429
+    `hint_pending` while this table, address or player has a hint asked, 429 `hints_busy`
+    while the queue of hints is full, 503 `hint_timeout` when the planners stayed busy
+    `POOL_HINT_WAIT` s. A hint whose client leaves before it starts is not planned."""
+    player = None if secret is None else seat_key(secret)
+    args = {"room_id": room.room_id, "token": body.token, "client": client, "player": player}
+    elsewhere = await unless_gone(request, room.at_owner("hint", args, timeout=CALL_TIMEOUT))
     if elsewhere is not None:
         return elsewhere
-    live = room.live()
-    return await hint_for(live, body.token, settings.computer_workers, settings.computer_starved)
+    ask = hint_ask(settings, client, player)
+    return await unless_gone(request, hint_for(room.live(), body.token, settings, ask))
 
 
 __all__ = ["RoomSummary", "router"]
