@@ -248,6 +248,9 @@ class Settings(BaseSettings):
     playnow_race_to: Annotated[int, Field(ge=1, le=15)] = 1
     playnow_poll: Annotated[float, Field(gt=0.0, le=60.0)] = 25.0  # longest long-poll
     queue_rate: str = "20/minute"
+    # Pair two players asking from one address (tests, a club on one connection); off: a
+    # rating farmed by fresh profiles of one address conceding to each other.
+    playnow_same_address: bool = False
     player_create_rate: str = "20/minute"
 
     # The shared history (docs/scaling.md, "Shared history"): PostgreSQL when set (psycopg

@@ -232,10 +232,13 @@ async def play_now(
     registry: Registry,
     matches: Matchmaking,
     quotas: Quotas,
+    client: ClientId,
+    settings: SettingsDep,
 ) -> dict[str, Any]:
     """Queue for a ranked game of `game` at the player's rating; paired at once when
     someone suitable waits (`matched`), else `waiting`: long-poll `GET /api/playnow`.
-    Pressing again keeps the player's one place. 429: too many joins and leaves."""
+    Pressing again keeps the player's one place. Never paired with a player asking from
+    the same address. 429: too many joins and leaves."""
     quotas.enforce("queue", me.id)
     assert secret is not None  # `me` was found by it
     rating = (await data.ratings(me.id, (body.game,)))[body.game]
@@ -247,6 +250,7 @@ async def play_now(
         rating.at(registry.clock.wall()).rating,
         matches.now(),
         seat_key(secret),
+        address=None if settings.playnow_same_address else client,
     )
     try:
         await matches.enqueue(entry)

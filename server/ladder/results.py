@@ -34,12 +34,12 @@ class RankedResults:
         restart)."""
 
         def over(room: Room) -> None:
-            """Rated when won with at least one shot played; a match ended before any shot
-            (a no-show, a concession at the table) or abandoned closes unrated, as the
-            history marks it abandoned."""
+            """Rated when won once every seat has struck a shot; a match ended before that
+            (a no-show, a concession before the other side's visit at the table: how one
+            address farmed a rating from fresh profiles) or abandoned closes unrated."""
             assert room.match is not None
             number = self.match_ids(room) if self.match_ids is not None else None
-            played = room.shots_played > 0 and not room.abandoned
+            played = all(n > 0 for n in room.shots_by_seat) and not room.abandoned
             winner = room.match.winner if played else None
             self.data.rate_ranked(ranked, number, winner, self.registry.clock.wall())
 

@@ -22,7 +22,9 @@ class QueueError(ValueError):
 @dataclass(frozen=True)
 class Waiting:
     """One queue entry. `seat_key` lets the server make the player's seat token in the
-    room it pairs them into (see `profile.seat_key`)."""
+    room it pairs them into (see `profile.seat_key`). `address`: where the player asked
+    from; two entries from one address are never paired (fresh profiles conceding to one
+    another farmed a rating)."""
 
     player_id: str
     name: str
@@ -30,6 +32,7 @@ class Waiting:
     rating: float
     since: float
     seat_key: str
+    address: str | None = None
 
 
 @dataclass(frozen=True)
@@ -153,7 +156,7 @@ class MatchPool:
                 right += 1
             if abs(other.rating - entry.rating) > reach:
                 break  # sorted outward: nobody further can suit
-            if other.player_id == entry.player_id:
+            if other.player_id == entry.player_id or _same_address(entry, other):
                 continue
             if self._suits(entry, other, now):
                 best = other
@@ -164,3 +167,7 @@ class MatchPool:
         self.leave(entry.player_id)
         self.leave(match.player_id)
         return Pairing(entry.kind, match, entry)  # the one who waited longer breaks
+
+
+def _same_address(a: Waiting, b: Waiting) -> bool:
+    return a.address is not None and a.address == b.address

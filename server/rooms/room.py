@@ -101,6 +101,9 @@ class Room:
     match: Match | None = field(default=None, init=False)
     shot: ShotInProgress | None = field(default=None, init=False)
     shots_played: int = field(default=0, init=False)
+    # Shots each seat has struck: a ranked match is rated only once every seat has had a
+    # visit at the table (a concession before that is a farm, not a game).
+    shots_by_seat: list[int] = field(init=False)
     rematch_votes: set[int] = field(default_factory=set, init=False)
     spectators: int = field(default=0, init=False)
     # Both players left and none came back: the match stopped, nobody won it.
@@ -111,6 +114,7 @@ class Room:
         if self.game not in GAME_KINDS:
             raise ValueError(f"unknown game {self.game!r}")
         self.seats = [None] if self.practice else [None, None]
+        self.shots_by_seat = [0] * len(self.seats)
         if self.practice:
             self.shot_clock = 0.0
             self.race_to = 1
@@ -331,6 +335,7 @@ class Room:
         with _rules():
             match.game.check_shot(seat)
         self.shots_played += 1
+        self.shots_by_seat[seat] += 1
         self.rematch_votes.clear()
         self.shot = ShotInProgress(
             self.shots_played, seat, match.public_state(), self.resting_balls()

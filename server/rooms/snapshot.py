@@ -46,6 +46,7 @@ class SavedRoomData:
     pending: PendingShot | None
     listed: bool = True
     computer: dict[int, str] = field(default_factory=dict)  # seat -> level
+    shots_by_seat: list[int] | None = None  # None: saved before it was kept
 
 
 @dataclass(frozen=True)
@@ -74,6 +75,9 @@ def room_snapshot_json(room: Room, match_id: int | None, pending: PendingShot | 
 
 def _saved(room: Room, match_id: int | None, pending: PendingShot | None) -> SavedRoomData:
     shots_played = room.shots_played if pending is None else pending.id - 1
+    by_seat = list(room.shots_by_seat)
+    if pending is not None:  # saved as just before it was struck
+        by_seat[pending.seat] -= 1
     return SavedRoomData(
         version=1,
         room_id=room.room_id,
@@ -90,6 +94,7 @@ def _saved(room: Room, match_id: int | None, pending: PendingShot | None) -> Sav
         pending=pending,
         listed=room.listed,
         computer=dict(room.computer),
+        shots_by_seat=by_seat,
     )
 
 
@@ -115,6 +120,10 @@ def room_from_snapshot(data: dict[str, Any]) -> SavedRoom:
             seat_info.connected = True
     room.match = Match.from_dict(saved.match) if saved.match is not None else None
     room.shots_played = saved.shots_played
+    # A room saved before the count was kept: every seat counted as having played once a
+    # shot was (the rule it was saved under).
+    by_seat = saved.shots_by_seat
+    room.shots_by_seat = list(by_seat) if by_seat else [saved.shots_played] * len(room.seats)
     room.rematch_votes = set(saved.rematch_votes)
     p = saved.pending
     pending = None if p is None else (p.seat, Shot(p.angle, p.speed, p.tip))

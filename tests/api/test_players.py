@@ -17,7 +17,13 @@ from starlette.testclient import WebSocketTestSession
 
 from server.players import COMPUTER_RATINGS, KindRating, rate_match
 from server.store.players import PlayerRows, RatingRecord
-from tests.support.games import BREAK_MESSAGE
+from tests.support.games import (
+    BREAK_MESSAGE,
+    EIGHT_BALL_GROUP_SHOT,
+    EIGHT_BALL_PLACE,
+    EIGHT_BALL_SCRATCH,
+    shoot_message,
+)
 from tests.support.live import live_server
 from tests.support.messages import receive_until, state_where
 from tests.support.rooms import app_with, connect, create_room
@@ -104,6 +110,25 @@ def break_rack(breaker: Any, other: Any) -> None:
     for ws in (breaker, other):
         receive_until(ws, "shot_result")
         receive_until(ws, "state")
+
+
+def both_visit(breaker: Any, other: Any) -> None:
+    """Each side has a visit at the table (a ranked match is rated only then): `breaker`
+    breaks and scratches, `other` takes ball in hand and pots a ball (`games.EIGHT_BALL`);
+    both have seen every result."""
+    break_rack(breaker, other)
+    for shooter, message in (
+        (breaker, shoot_message(EIGHT_BALL_SCRATCH)),
+        (other, {"type": "place_cue", "x": EIGHT_BALL_PLACE[0], "y": EIGHT_BALL_PLACE[1]}),
+        (other, shoot_message(EIGHT_BALL_GROUP_SHOT)),
+    ):
+        shooter.send_json(message)
+        if message["type"] == "place_cue":
+            receive_until(shooter, "state")
+            continue
+        for ws in (breaker, other):
+            receive_until(ws, "shot_result")
+            receive_until(ws, "state")
 
 
 @contextmanager
@@ -266,10 +291,10 @@ def test_a_ranked_match_moves_both_ratings_by_glicko2(clocked_client, clock):
     ):
         receive_until(wa, "state")
         receive_until(wb, "state")
-        break_rack(wa, wb)
+        both_visit(wa, wb)
         wb.send_json({"type": "concede"})
-        over = receive_until(wa, "state")[-1]
-        assert over["match"]["match_over"] and over["match"]["match_winner"] == 0
+        over = state_where(wa, lambda s: s["match"]["match_over"])
+        assert over["match"]["match_winner"] == 0
         # Only the room's first match is rated: a rematch is friendly.
         wa.send_json({"type": "rematch"})
         wb.send_json({"type": "rematch"})
@@ -319,6 +344,51 @@ def test_a_ranked_match_ended_before_any_shot_is_not_rated(clocked_client):
         assert [r["games"] for r in profile["ratings"]] == [0, 0]
         assert profile["recent"] == []
     assert clocked_client.get("/api/leaderboard/eight_ball").json()["provisional"] == []
+
+
+def test_a_concession_before_the_other_side_played_is_not_rated(clocked_client):
+    """The farm: a fresh profile paired by Play now breaks, the other concedes at once.
+    Until each side has had a visit at the table the match is not rated."""
+    ana, ben = Visitor(clocked_client), Visitor(clocked_client)
+    play_now(ana)
+    b = play_now(ben)["room"]
+    a = ana.call("GET", "/api/playnow").json()["room"]
+    with (
+        connect(clocked_client, a["room_id"], a["token"]) as wa,
+        connect(clocked_client, b["room_id"], b["token"]) as wb,
+    ):
+        receive_until(wa, "state")
+        receive_until(wb, "state")
+        break_rack(wa, wb)
+        wb.send_json({"type": "concede"})
+        over = state_where(wa, lambda s: s["match"]["match_over"])
+        assert over["match"]["match_winner"] == 0  # the game is won, not rated
+    for player in (ana, ben):
+        profile = player.call("GET", "/api/players/me").json()
+        assert [r["games"] for r in profile["ratings"]] == [0, 0]
+        assert [r["rating"] for r in profile["ratings"]] == [1500, 1500]
+
+
+def test_play_now_never_pairs_two_players_from_one_address(settings, clock):
+    """Fresh profiles of one address conceding to one another farmed a rating: Play now
+    pairs only players asking from different addresses."""
+    strict = settings.replace(playnow_same_address=False)
+    with TestClient(app_with(strict, clock=clock.clock)) as client:
+        transport = client._transport  # TestClient names the peer's address here
+        transport.client = ("10.0.0.1", 50000)
+        ana, ben = Visitor(client), Visitor(client)
+        assert play_now(ana)["status"] == "waiting"
+        assert play_now(ben)["status"] == "waiting"  # the same address: not paired
+        clock.advance(15.0)  # windows widened: ratings are no obstacle
+        assert ben.call("GET", "/api/playnow").json()["status"] == "waiting"
+        transport.client = ("10.0.0.2", 50000)
+        cara = Visitor(client)
+        matched = play_now(cara)
+        assert matched["status"] == "matched"
+        opponent = matched["room"]["opponent"]
+        assert opponent in (ana.profile["name"], ben.profile["name"])
+        other = ben if opponent == ana.profile["name"] else ana
+        assert other.call("GET", "/api/playnow").json()["status"] == "waiting"
 
 
 def test_the_leaderboard_orders_by_rating_minus_two_deviations(clocked_client, clock):
@@ -422,9 +492,9 @@ def test_a_ranked_room_brought_back_after_a_restart_is_still_rated(settings, clo
             receive_until(wa, "state")
             with connect(client, b["room_id"], b["token"]) as wb:
                 receive_until(wb, "state")
-                break_rack(wa, wb)
+                both_visit(wa, wb)
                 wa.send_json({"type": "concede"})
-                over = receive_until(wb, "state")[-1]
+                over = state_where(wb, lambda s: s["match"]["match_over"])
                 assert over["match"]["match_winner"] == 1
         mine = ana.call("GET", "/api/players/me").json()
         theirs = ben.call("GET", "/api/players/me").json()

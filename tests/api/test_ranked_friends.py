@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 
 from server.players import KindRating, rate_match
-from tests.api.test_players import Visitor, at_the_table, break_rack
+from tests.api.test_players import Visitor, at_the_table, both_visit, break_rack
 from tests.support.messages import state_where
 from tests.support.rooms import create_room
 
@@ -42,7 +42,7 @@ def test_a_ranked_friends_table_moves_both_ratings_by_glicko2(clocked_client, cl
     a = sit(ana, room_id, "Ana")
     b = sit(ben, room_id, "Ben")
     with at_the_table(clocked_client, room_id, a, b) as (wa, wb):
-        break_rack(wa, wb)
+        both_visit(wa, wb)
         wb.send_json({"type": "concede"})
         state_where(wa, lambda s: s["match"]["match_over"] and s["match"]["match_winner"] == 0)
         # A rematch is friendly, as in a Play now room.

@@ -27,6 +27,7 @@ BASE: dict[str, object] = {
     "room_create_rate": "100000/minute",
     "join_rate": "100000/minute",
     "watch_rate": "100000/minute",
+    "playnow_same_address": True,  # every test's players ask from one address
     "lease_ttl": 3.0,
     "heartbeat": 0.5,
     "rpc_timeout": 3.0,

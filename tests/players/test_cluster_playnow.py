@@ -18,7 +18,14 @@ from server.store.players import PlayerRows
 from tests.cluster.servers import ServerSet
 from tests.cluster.sockets import connect, send, until
 from tests.support import waiting
-from tests.support.games import BREAK, EIGHT_BALL, shoot_message
+from tests.support.games import (
+    BREAK,
+    EIGHT_BALL,
+    EIGHT_BALL_GROUP_SHOT,
+    EIGHT_BALL_PLACE,
+    EIGHT_BALL_SCRATCH,
+    shoot_message,
+)
 from tests.support.postgres import PostgresServer, postgres  # noqa: F401  (a fixture)
 from tests.support.redis import RedisServer, redis  # noqa: F401  (a fixture)
 
@@ -158,14 +165,26 @@ def owner_moved(base: str, room_id: str, old_url: str, within: float = 20.0) -> 
     raise AssertionError("the room was not taken over in time")
 
 
-async def break_and_concede(url: str, breaker_token: str, other_token: str) -> dict:
-    """Seat 0 breaks (`EIGHT_BALL`: legal), seat 1 concedes; the final `state`."""
+async def visit_and_concede(url: str, breaker_token: str, other_token: str) -> dict:
+    """Seat 0 breaks (`EIGHT_BALL`: legal) and scratches, seat 1 takes ball in hand and
+    pots a ball, then concedes (a match is rated once each side has played); the final
+    `state`."""
     breaker, _, _ = await connect(url, breaker_token)
     other, _, _ = await connect(url, other_token)
+    place = {"type": "place_cue", "x": EIGHT_BALL_PLACE[0], "y": EIGHT_BALL_PLACE[1]}
     try:
-        await send(breaker, shoot_message(BREAK))
-        await until(other, "shot_result")
-        await until(other, "state")
+        for shooter, message in (
+            (breaker, shoot_message(BREAK)),
+            (breaker, shoot_message(EIGHT_BALL_SCRATCH)),
+            (other, place),
+            (other, shoot_message(EIGHT_BALL_GROUP_SHOT)),
+        ):
+            await send(shooter, message)
+            if message is place:
+                await until(other, "state")
+                continue
+            await until(other, "shot_result")
+            await until(other, "state")
         await send(other, {"type": "concede"})
         while not (state := (await until(breaker, "state"))[-1])["match"]["match_over"]:
             pass
@@ -198,7 +217,7 @@ def test_a_ranked_room_taken_over_after_its_server_died_is_still_rated(
             owner.kill()
             new_url = owner_moved(survivor.url, room_id, old_url)
             tokens = {s["seat"]: s["token"] for s in (seat_a, seat_b)}
-            over = asyncio.run(break_and_concede(new_url, tokens[0], tokens[1]))
+            over = asyncio.run(visit_and_concede(new_url, tokens[0], tokens[1]))
             assert over["match"]["match_winner"] == 0
             survivor_ana = httpx.Client(base_url=survivor.url, headers=ana.headers, timeout=20)
             with survivor_ana:

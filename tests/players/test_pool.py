@@ -93,3 +93,18 @@ def test_a_pair_put_back_waits_without_pairing_and_is_paired_by_the_next_wave():
     pool.put_back(entry("old", 1600, since=0.0))  # waited 60 s: a window of 700 by now
     (pairing,) = pool.pair(now=60.0)  # "new" (window 300) meets it through its window
     assert {pairing.first.player_id, pairing.second.player_id} == {"new", "old"}
+
+
+def test_two_entries_from_one_address_are_never_paired():
+    pool = MatchPool()
+    ana = Waiting("ana", "Ana", "eight_ball", 1500, 0.0, "key-ana", address="10.0.0.1")
+    ben = Waiting("ben", "Ben", "eight_ball", 1500, 1.0, "key-ben", address="10.0.0.1")
+    cara = Waiting("cara", "Cara", "eight_ball", 1600, 2.0, "key-cara", address="10.0.0.2")
+    assert pool.join(ana) is None and pool.join(ben) is None
+    assert pool.pair(now=100.0) == []  # the widest window, still not each other
+    pairing = pool.join(cara)  # farther in rating, but from elsewhere
+    assert pairing is not None and pairing.second.player_id == "cara"
+    left = "ana" if pairing.first.player_id == "ben" else "ben"
+    assert pool.get(left) is not None
+    unknown = entry("dan", 1500, since=3.0)  # no address known: paired as before
+    assert pool.join(unknown) is not None and pool.get(left) is None

@@ -62,6 +62,7 @@ def test_room_round_trip_keeps_everything_but_tokens_in_clear() -> None:
     assert back.match is not None and room.match is not None
     assert back.match.to_dict() == room.match.to_dict()
     assert back.shots_played == room.shots_played == 2
+    assert back.shots_by_seat == room.shots_by_seat == [2, 0]  # Ben has not played yet
     assert back.resting_balls() == room.resting_balls()
     assert 0 not in [row[0] for row in back.resting_balls()]  # the cue ball is in hand
     assert back.match.game.ball_in_hand == "anywhere" and back.acting_seat() == 1
@@ -86,6 +87,7 @@ def test_a_pending_shot_is_saved_with_the_table_before_it_and_replays_the_same()
     assert pending == (1, shot) and saved.pending_id == shot_id == 3
     assert back.match is not None and back.match.to_dict() == before_state
     assert back.phase == "aiming" and back.shots_played == 2
+    assert back.shots_by_seat == [2, 0]  # as before the pending shot was struck
     replay_seat, replay = pending
     again_id, again_before = back.begin_shot(replay_seat, replay)
     assert again_id == shot_id
@@ -93,6 +95,7 @@ def test_a_pending_shot_is_saved_with_the_table_before_it_and_replays_the_same()
     assert again.frames.positions.tobytes() == live_result.frames.positions.tobytes()
     back.apply_shot(again)
     assert back.match.to_dict() == room.match.to_dict()
+    assert back.shots_by_seat == room.shots_by_seat == [2, 1]
 
 
 def test_a_waiting_room_round_trips() -> None:
@@ -147,6 +150,9 @@ def test_a_room_saved_at_rest_in_the_first_form_loads() -> None:
     # and it is saved again in the current form, which loads to the same room
     again = room_from_snapshot(json.loads(encode(room_to_snapshot(room, 12)))).room
     assert again.match is not None and again.match.to_dict() == room.match.to_dict()
+    # saved before shots were counted per seat: each seat counted as having played (the
+    # rule it was saved under: a ranked match with a shot played is rated)
+    assert room.shots_by_seat == again.shots_by_seat == [3, 3]
 
 
 def test_a_room_saved_mid_shot_in_the_first_form_loads_with_its_pending_shot() -> None:
