@@ -30,13 +30,16 @@ async def unless_gone(request: Request, work: Coroutine[Any, Any, T]) -> T:
     task = asyncio.ensure_future(work)
     watch = asyncio.ensure_future(_gone(request))
     try:
-        await asyncio.wait({task, watch}, return_when=asyncio.FIRST_COMPLETED)
+        done, _ = await asyncio.wait({task, watch}, return_when=asyncio.FIRST_COMPLETED)
+    except BaseException:  # the handler itself is cancelled (the server stops)
+        task.cancel()
+        raise
     finally:
         watch.cancel()
-        if not task.done():
-            task.cancel()
-    if task.cancelled():
-        raise HTTPException(
-            CLIENT_GONE, {"code": "client_gone", "message": "The client left before the answer."}
-        )
-    return task.result()
+    if task in done:
+        return task.result()
+    task.cancel()
+    await asyncio.gather(task, return_exceptions=True)  # until it has let go of its work
+    raise HTTPException(
+        CLIENT_GONE, {"code": "client_gone", "message": "The client left before the answer."}
+    )

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+import logging
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -71,13 +72,30 @@ def planner(monkeypatch: pytest.MonkeyPatch) -> OnePlanner:
     return stand_in
 
 
+class Errors(logging.Handler):
+    def __init__(self) -> None:
+        super().__init__(logging.ERROR)
+        self.records: list[logging.LogRecord] = []
+
+    def emit(self, record: logging.LogRecord) -> None:
+        self.records.append(record)
+
+
 @pytest.fixture
 def address(tmp_path: Path) -> Iterator[str]:
+    """A real server; it must log no error (an "Exception in ASGI application")."""
     settings = settings_in(
         tmp_path, computer_workers=1, computer_pause=0.0, shot_clock=600.0, hint_queue=4
     )
+    errors = Errors()
+    logger = logging.getLogger("uvicorn.error")
     with live_server(settings) as where:
-        yield where
+        logger.addHandler(errors)  # after uvicorn configured its loggers
+        try:
+            yield where
+        finally:
+            logger.removeHandler(errors)
+    assert [r.getMessage() for r in errors.records] == []
 
 
 def client_at(address: str, source: str) -> httpx.AsyncClient:
