@@ -36,7 +36,6 @@ class PlannerShare:
     slots: int = 1
     computer: int = 0  # computer turns being planned
     hints_out: int = 0  # hints handed to the planners (running, or queued in the pool)
-    started: int = 0  # hints handed to the planners since the start (for tests and stats)
     waiting: deque[asyncio.Future[None]] = field(default_factory=deque)
     holders: set[Hashable] = field(default_factory=set)  # requesters with a hint asked
 
@@ -111,7 +110,6 @@ class PlannerShare:
         """Plan; the slot and the keys are held until the planners are done with it, even
         if the requester leaves meanwhile (a plan under way cannot be taken back from a
         process, and another hint queued behind it would delay the computer more)."""
-        self.started += 1
         task = asyncio.ensure_future(plan())
 
         def done(finished: asyncio.Future[T]) -> None:
