@@ -153,3 +153,28 @@ def test_relative_imports_resolve_and_type_checking_imports_are_left_out():
     assert "server.protocol" in observer and "server.engine" in observer
     assert "server.rooms.room" not in observer  # under `if TYPE_CHECKING:`
     assert "server.rooms.room" in imports_of(SERVER / "rooms" / "live.py")  # `from .room`
+
+
+def reaches_into_physics(modules: dict[str, set[str]]) -> list[str]:
+    """Imports of the engine's compiled core (`server.engine.physics`) from outside the
+    engine: the rest of the server goes through `server.engine`'s public names, so a change
+    to the physics is made in one place."""
+    return sorted(
+        f"{module} -> {target}"
+        for module, imported in modules.items()
+        if layer(module) != "engine"
+        for target in imported
+        if target == "server.engine.physics" or target.startswith("server.engine.physics.")
+    )
+
+
+def test_only_the_engine_imports_its_physics():
+    assert reaches_into_physics(MODULES) == []
+
+
+def test_the_check_sees_a_reach_into_the_physics():
+    modules = {
+        "server.protocol.motion": {"server.engine.physics.tick", "server.engine"},
+        "server.engine.simulate": {"server.engine.physics.tick"},
+    }
+    assert reaches_into_physics(modules) == ["server.protocol.motion -> server.engine.physics.tick"]
