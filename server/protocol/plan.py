@@ -30,14 +30,6 @@ CELS = 16  # sprite cels per turn
 BallRow = tuple[int, int, int, int]  # id, x_mm, y_mm, cel
 
 
-def message_text(kind: str, seq: int, body: str) -> str:
-    """A message from its pre-encoded `body` (JSON without `type` and `seq`): string
-    formatting only, so a room adds the sequence number without encoding again."""
-    if len(body) > 2:
-        return f'{{"type":"{kind}","seq":{seq},{body[1:]}'
-    return f'{{"type":"{kind}","seq":{seq}}}'
-
-
 class Timed(NamedTuple):
     """A point of the shot being shown, `at` seconds after the strike: the room remembers
     the frame a member joining now is shown (`Room.show`)."""
