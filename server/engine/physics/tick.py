@@ -310,11 +310,11 @@ def run_to_rest_kernel(
     while ticks < max_ticks and any_moving(st):
         if frames and ticks == cap:
             cap *= 2
-            frame_pos = _grown(frame_pos, cap)
-            frame_cels = _grown(frame_cels, cap)
-            frame_on = _grown(frame_on, cap)
+            frame_pos = grown(frame_pos, cap)
+            frame_cels = grown(frame_cels, cap)
+            frame_on = grown(frame_on, cap)
         if events.shape[0] - n_ev <= MAX_EVENTS_PER_TICK + 64:
-            events = _grown(events, 2 * events.shape[0])
+            events = grown(events, 2 * events.shape[0])
         # Two calls, not one with chosen arguments: numba types the frames' arrays and
         # their absence (None) as two versions of run_ticks, which cannot share a call.
         if frames:
@@ -388,7 +388,7 @@ def settle_kernel(
 
 
 @njit(cache=True, nogil=True)
-def _grown(a, rows):
+def grown(a, rows):
     out = np.empty((rows,) + a.shape[1:], dtype=a.dtype)
     out[: a.shape[0]] = a
     return out
