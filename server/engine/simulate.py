@@ -7,6 +7,8 @@ the same compiled call.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from .balls import CUE, BallSet
@@ -29,7 +31,7 @@ _EVENT_CAPACITY = 16384
 class _Geometry:
     """The table as the arrays the kernels take, built once per Table."""
 
-    __slots__ = ("cushions", "jaws", "pockets", "centers", "length", "width")
+    __slots__ = ("centers", "cushions", "jaws", "length", "pockets", "width")
 
     def __init__(self, table: Table) -> None:
         self.cushions = table.cushion_array()
@@ -132,11 +134,11 @@ def _run_kernel(
     tick: float,
     params: np.ndarray,
     event_capacity: int = _EVENT_CAPACITY,
-) -> tuple:
+) -> tuple[Any, ...]:
     """(frame positions, cels, on-table flags, event rows, stalled ticks, ticks); `s` is
     advanced in place to rest. The event array starts at `event_capacity` rows and grows
     as needed. (`settle_kernel` runs a shot without frames.)"""
-    return run_to_rest_kernel(
+    raw: tuple[Any, ...] = run_to_rest_kernel(
         s.positions,
         s.velocities,
         s.spins,
@@ -155,6 +157,7 @@ def _run_kernel(
         event_capacity,
         True,
     )
+    return raw
 
 
 class ShotInMotion:
@@ -179,7 +182,7 @@ class ShotInMotion:
         self._events = [strike(self.state, shot, params)]
         self._geometry = _geometry(table)
         self._params = _params_array(params)
-        self._raw: tuple | None = None
+        self._raw: tuple[Any, ...] | None = None
         self._trace: Trace | None = None
 
     def run(self, trace: Tolerance | None = None) -> None:

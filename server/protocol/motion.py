@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 import struct
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numba import njit
@@ -35,7 +36,7 @@ SOUND_CODES = {"strike": 0, "ball": 1, "cushion": 2, "jaw": 3, "pocket": 4}
 
 
 @njit(cache=True, inline="always")
-def _varint(buf, at, value):
+def _varint(buf: np.ndarray, at: int, value: int) -> int:
     while value >= 128:
         buf[at] = (value & 127) | 128
         value >>= 7
@@ -45,12 +46,20 @@ def _varint(buf, at, value):
 
 
 @njit(cache=True, inline="always")
-def _zigzag(buf, at, value):
+def _zigzag(buf: np.ndarray, at: int, value: int) -> int:
     return _varint(buf, at, (value << 1) if value >= 0 else ((-value) << 1) - 1)
 
 
 @njit(cache=True)
-def pack_tracks(ids, pocket_of, t, pos, phase, knots, offsets):
+def pack_tracks(
+    ids: np.ndarray,
+    pocket_of: np.ndarray,
+    t: np.ndarray,
+    pos: np.ndarray,
+    phase: np.ndarray,
+    knots: np.ndarray,
+    offsets: np.ndarray,
+) -> np.ndarray:
     """The tracks section (see docs/protocol.md): per ball id, pocket, knot count, the first
     knot absolute, then varint deltas of time, x, y and roll. Holds the GIL (see above)."""
     n = ids.shape[0]
@@ -71,10 +80,10 @@ def pack_tracks(ids, pocket_of, t, pos, phase, knots, offsets):
         prev_p = 0
         for k in range(lo, hi):
             i = knots[k]
-            tt = int(round(t[i] * 1e6))
-            x = int(round(pos[i, b, 0] * 1e4))
-            y = int(round(pos[i, b, 1] * 1e4))
-            ph = int(round(phase[i, b] / (2.0 * math.pi) * 4096.0))
+            tt = int(round(t[i] * 1e6))  # noqa: RUF046 (the compiled type)
+            x = int(round(pos[i, b, 0] * 1e4))  # noqa: RUF046 (the compiled type)
+            y = int(round(pos[i, b, 1] * 1e4))  # noqa: RUF046 (the compiled type)
+            ph = int(round(phase[i, b] / (2.0 * math.pi) * 4096.0))  # noqa: RUF046 (the compiled type)
             if k == lo:
                 at = _varint(buf, at, tt)
                 first = ph % 4096
@@ -126,18 +135,17 @@ def tracks_of(trace: Trace) -> Tracks:
     )  # fmt: skip
 
 
-def run_traced(table: Table, motion: ShotInMotion) -> Tracks:
+def run_traced(motion: ShotInMotion) -> Tracks:
     """`motion.run()` traced within `TRACE`, and its tracks packed: one compiled call that
     releases the GIL (the engine's), then the packing, which keeps it. `motion.result()`
-    is then what it would have been, bit for bit. Run it in a worker thread. (`table` is
-    the one `motion` was struck on.)"""
+    is then what it would have been, bit for bit. Run it in a worker thread."""
     motion.run(trace=TRACE)
     return tracks_of(motion.trace)
 
 
 def trace(table: Table, balls: BallSet, shot: Shot) -> Tracks:
     """The tracks of a shot (tests, benchmarks): `run_traced` on a fresh `ShotInMotion`."""
-    return run_traced(table, ShotInMotion(table, balls, shot))
+    return run_traced(ShotInMotion(table, balls, shot))
 
 
 def pack_sounds(sounds: list[Event]) -> bytes:
@@ -146,12 +154,12 @@ def pack_sounds(sounds: list[Event]) -> bytes:
     out = bytearray()
     prev = 0
     for event in sounds:
-        at = max(prev, int(round(event.time / TIME_UNIT)))
+        at = max(prev, round(event.time / TIME_UNIT))
         _put_varint(out, at - prev)
         prev = at
-        ids = list(event.ids) + [NO_BALL]
+        ids = [*event.ids, NO_BALL]
         target = event.target if 0 <= event.target < NO_BALL else NO_BALL
-        speed = min(65535, max(0, int(round(event.speed * 1000))))
+        speed = min(65535, max(0, round(event.speed * 1000)))
         out += struct.pack("<BBBBH", SOUND_CODES[event.kind], ids[0], ids[1], target, speed)
     return bytes(out)
 
@@ -172,7 +180,7 @@ def motion_bytes(
         MOTION_VERSION,
         0,
         shot_id,
-        int(round(duration / TIME_UNIT)),
+        round(duration / TIME_UNIT),
         balls,
         len(sounds),
     )
@@ -187,7 +195,7 @@ def with_seq(message: bytes, seq: int) -> bytes:
 SOUND_KINDS = tuple(SOUND_CODES)
 
 
-def decode_motion(message: bytes) -> dict:
+def decode_motion(message: bytes) -> dict[str, Any]:
     """The binary `motion` message as plain values (tests, benchmarks, outside clients in
     Python): `type`, `seq`, `shot`, `duration` (s), `tracks` (per ball: `id`, `pocket`,
     knot `t` (s), `x`, `y` (m) and `phase` (rad rolled, from the first knot's angle)) and

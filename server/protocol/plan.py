@@ -155,7 +155,7 @@ def _sounds(events: list[Event], tick: float) -> list[tuple[int, Event]]:
     repeats within SOUND_GAP of its last sound is the same sustained touch (a ball pressed by
     its spin against another collides again every few microseconds) and is not sent again;
     at most MAX_SOUNDS_PER_TICK a tick, the loudest (strikes and pockets always)."""
-    last: dict[tuple, float] = {}
+    last: dict[tuple[str, tuple[int, ...], int], float] = {}
     by_tick: dict[int, list[Event]] = {}
     for event in events:
         if event.kind not in SOUND_KINDS:

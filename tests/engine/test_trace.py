@@ -4,6 +4,7 @@ engine's frames, and every ball's own contacts are knots of its track."""
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -109,7 +110,7 @@ def test_knots_stay_within_the_tolerance_of_every_sample():
     _, _, trace = traced(EIGHT_BALL, BREAK)
     for b in range(len(trace.ids)):
         knots = trace.knots_of(b)
-        for a, j in zip(knots[:-1], knots[1:], strict=True):
+        for a, j in itertools.pairwise(knots):
             span = trace.times[j] - trace.times[a]
             for i in range(a + 1, j):
                 f = (trace.times[i] - trace.times[a]) / span if span > 0 else 0.0

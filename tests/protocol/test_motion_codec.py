@@ -57,7 +57,7 @@ def test_one_pass_gives_the_engines_result_bit_for_bit(seed, shot):
     balls = rack("eight_ball", TABLE, seed=seed)
     expected = simulate(TABLE, balls, shot)
     motion = ShotInMotion(TABLE, balls, shot)
-    run_traced(TABLE, motion)
+    run_traced(motion)
     got = motion.result()
     assert got.frames.positions.tobytes() == expected.frames.positions.tobytes()
     assert np.array_equal(got.frames.cels, expected.frames.cels)

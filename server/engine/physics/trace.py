@@ -117,7 +117,7 @@ def trace_ticks(
             frame_cels = grown(frame_cels, frame_cap)
             frame_on = grown(frame_on, frame_cap)
         frame_pos[ticks] = pos
-        cels_of(phase, st, frame_cels[ticks], p)
+        cels_of(phase, frame_cels[ticks], p)
         for i in range(n):
             frame_on[ticks, i] = st[i] != POCKETED
         if n_rows + n_ev > rows.shape[0]:
@@ -170,11 +170,11 @@ def trace_ticks(
                 s_forced[k] = False
                 for j in range(e, last):
                     kind = int(events[j, 1])
-                    if kind == EV_BALL or kind == EV_CUSHION or kind == EV_JAW:  # noqa: SIM109
+                    if kind == EV_BALL or kind == EV_CUSHION or kind == EV_JAW:
                         s_forced[k, int(events[j, 2])] = True
                         if kind == EV_BALL:
                             s_forced[k, int(events[j, 3])] = True
-                    elif kind == EV_POCKET or kind == EV_REST:  # noqa: SIM109
+                    elif kind == EV_POCKET or kind == EV_REST:
                         s_forced[k, int(events[j, 2])] = True
                 if s_t[k] > s_t[k - 1]:
                     k += 1
