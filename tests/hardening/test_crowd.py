@@ -222,6 +222,7 @@ async def reconnecting(base: str, times: int, address: str) -> list[object]:
     return seen
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_one_address_reconnecting_in_a_loop_is_refused_past_its_quota(tmp_path: Path):
     settings = Settings(
         web_dir=tmp_path, db_path=tmp_path / "pool.db", watch_rate="10/minute", shot_clock=0.0
