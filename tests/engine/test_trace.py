@@ -21,6 +21,7 @@ from server.engine import (
     simulate_traced,
 )
 from tests.support.games import BREAK, EIGHT_BALL
+from tests.support.results import assert_same_result
 
 TABLE = Table.pool("9ft")
 TOLERANCE = Tolerance(0.0002, 0.03)
@@ -46,12 +47,7 @@ def test_one_pass_gives_the_engines_result_bit_for_bit(seed, shot):
     """The traced run runs the ticks once for the engine and the trace: its result is
     `simulate`'s exactly (frames, events, the table at rest, stalled ticks)."""
     expected, got, _ = traced(seed, shot)
-    assert got.frames.positions.tobytes() == expected.frames.positions.tobytes()
-    assert np.array_equal(got.frames.cels, expected.frames.cels)
-    assert np.array_equal(got.frames.on_table, expected.frames.on_table)
-    assert got.events == expected.events
-    assert got.final.to_dict() == expected.final.to_dict()
-    assert got.stalled_ticks == expected.stalled_ticks
+    assert_same_result(got, expected)
 
 
 def test_a_shot_in_motion_gives_its_trace_once_run_with_a_tolerance():

@@ -25,6 +25,7 @@ from server.protocol.motion import (
 )
 from server.protocol.plan import motion_messages, motion_text, stored_motion
 from tests.support.games import BREAK, EIGHT_BALL
+from tests.support.results import assert_same_result
 
 TABLE = Table.pool("9ft")
 
@@ -59,12 +60,7 @@ def test_one_pass_gives_the_engines_result_bit_for_bit(seed, shot):
     motion = ShotInMotion(TABLE, balls, shot)
     run_traced(motion)
     got = motion.result()
-    assert got.frames.positions.tobytes() == expected.frames.positions.tobytes()
-    assert np.array_equal(got.frames.cels, expected.frames.cels)
-    assert np.array_equal(got.frames.on_table, expected.frames.on_table)
-    assert got.events == expected.events
-    assert got.final.to_dict() == expected.final.to_dict()
-    assert got.stalled_ticks == expected.stalled_ticks
+    assert_same_result(got, expected)
 
 
 def test_every_contact_is_drawn_where_the_engine_has_it():
