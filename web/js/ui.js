@@ -246,6 +246,7 @@ export function renderHud(state, now) {
   conn.className = `conn ${state.connection}`;
   setText($('role'), state.me.role === 'player' ? `seat ${(state.me.seat ?? 0) + 1}` : 'spectator');
   renderRematch(state);
+  renderWaysOn(state);
   renderActions(state);
   renderWinner(winner);
   const error = state.error && now - state.error.at < 4 ? state.error.message : '';
@@ -404,6 +405,21 @@ function renderRematch(state) {
   setText(info, text);
   setHidden(info, !text);
   info.dataset.votes = votes.join(',');
+}
+
+/**
+ * The ways on from a finished game, next to Rematch: a new opponent by Play now (the same
+ * game when it is ranked, else 8-ball), and the lobby.
+ * @param {import('./state.js').RoomState} state
+ */
+function renderWaysOn(state) {
+  const ended = state.phase === 'over' || Boolean(state.room?.abandoned);
+  const game = state.room?.game === 'nine_ball' ? 'nine_ball' : 'eight_ball';
+  const again = /** @type {HTMLAnchorElement} */ ($('new-opponent'));
+  const href = `/?playnow=${game}`;
+  if (again.getAttribute('href') !== href) again.setAttribute('href', href);
+  setHidden(again, !ended);
+  setHidden($('end-lobby'), !ended);
 }
 
 /**
