@@ -44,12 +44,16 @@ export function onName(fn) {
 /** @param {HTMLInputElement} input */
 const limitOf = (input) => (input.maxLength > 0 ? input.maxLength : DEFAULT_LIMITS.max_name);
 
+const SAVE_AFTER = 700; // ms after the last key before a name typed is saved
+
 /**
  * Prefill `input` with the profile's name (unless something was typed first) and show
- * its limit under it while typing.
+ * its limit under it while typing. With `save`, a valid name typed is saved to the
+ * profile shortly after the last key (and, if the page is left first, on the next page).
  * @param {HTMLInputElement} input
+ * @param {boolean} [save]
  */
-export function bindNameField(input) {
+export function bindNameField(input, save = false) {
   const note = document.createElement('span');
   note.className = 'name-note small muted';
   note.dataset.testid = `${input.dataset.testid ?? 'name'}-note`;
@@ -69,7 +73,30 @@ export function bindNameField(input) {
   let typed = false;
   input.addEventListener('input', () => { typed = true; }, { once: true });
   onName((name) => { if (!typed) { input.value = name; show(); } });
+  if (save) saveAsTyped(input);
   show();
+}
+
+/**
+ * Save a valid name typed in `input` to the profile once the typing stops; a name left
+ * unsaved by the last page is saved now.
+ * @param {HTMLInputElement} input
+ */
+function saveAsTyped(input) {
+  /** @type {ReturnType<typeof setTimeout> | undefined} */
+  let timer;
+  const saveNow = () => settleName(input).then(() => memory.setPendingName(''), () => {});
+  input.addEventListener('input', () => {
+    clearTimeout(timer);
+    const valid = !nameProblem(input.value, limitOf(input));
+    memory.setPendingName(valid ? input.value.trim() : '');
+    if (valid) timer = setTimeout(saveNow, SAVE_AFTER);
+  });
+  const pending = memory.pendingName();
+  if (pending) {
+    input.value = pending;
+    input.dispatchEvent(new Event('input'));
+  }
 }
 
 /**

@@ -32,7 +32,7 @@ export function startLobby() {
   }, () => {});
 
   const nameEl = $input('name');
-  bindNameField(nameEl);
+  bindNameField(nameEl, true); // saved to the profile as typed
   // `/?playnow=<game>`: "New opponent" at the end of a game queues at once.
   const again = new URLSearchParams(location.search).get('playnow');
   mountPlayNow($('playnow'), () => settleName(nameEl), again);
