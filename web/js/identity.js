@@ -74,29 +74,31 @@ export function bindNameField(input, save = false) {
   input.addEventListener('input', () => { typed = true; }, { once: true });
   onName((name) => { if (!typed) { input.value = name; show(); } });
   if (save) saveAsTyped(input);
+  // A name typed on the last page and not saved yet (the page was left first) is the one
+  // to play under: shown here, saved with the next action (or now, where fields save).
+  const pending = memory.pendingName();
+  if (pending) {
+    input.value = pending;
+    input.dispatchEvent(new Event('input'));
+  }
   show();
 }
 
 /**
- * Save a valid name typed in `input` to the profile once the typing stops; a name left
- * unsaved by the last page is saved now.
+ * Save a valid name typed in `input` to the profile once the typing stops (kept as the
+ * pending name meanwhile, for the next page if this one is left first).
  * @param {HTMLInputElement} input
  */
 function saveAsTyped(input) {
   /** @type {ReturnType<typeof setTimeout> | undefined} */
   let timer;
-  const saveNow = () => settleName(input).then(() => memory.setPendingName(''), () => {});
+  const saveNow = () => settleName(input).catch(() => {});
   input.addEventListener('input', () => {
     clearTimeout(timer);
     const valid = !nameProblem(input.value, limitOf(input));
     memory.setPendingName(valid ? input.value.trim() : '');
     if (valid) timer = setTimeout(saveNow, SAVE_AFTER);
   });
-  const pending = memory.pendingName();
-  if (pending) {
-    input.value = pending;
-    input.dispatchEvent(new Event('input'));
-  }
 }
 
 /**
@@ -117,5 +119,6 @@ export async function settleName(input) {
     for (const fn of listeners) fn(renamed.name);
   }
   memory.setName(name);
+  memory.setPendingName('');
   return name;
 }
