@@ -18,8 +18,8 @@ import uvicorn
 from server import logs
 from server.app import create_app
 from server.config import Settings, SettingsError
-from server.http_protocol import HttpProtocol
 from server.rooms.prepare import warm_up
+from server.uvicorn_http import HttpProtocol
 
 
 def uvicorn_config(

@@ -5,6 +5,7 @@ from __future__ import annotations
 import asyncio
 import contextlib
 from collections.abc import AsyncIterator, Callable, Iterable
+from dataclasses import dataclass
 from pathlib import Path
 
 from fastapi import FastAPI, HTTPException
@@ -12,14 +13,24 @@ from fastapi.responses import FileResponse
 from fastapi.staticfiles import StaticFiles
 
 from server.api.headers import SecurityHeaders
-from server.api.http import router as http_router
 from server.api.matches import router as matches_router
-from server.api.players import install as install_players
+from server.api.meta import router as meta_router
+from server.api.owner import answer_calls
+from server.api.players import router as players_router
 from server.api.quotas import ClientQuotas
-from server.api.routing import install as install_calls
+from server.api.rooms import router as rooms_router
 from server.api.ws import router as ws_router
 from server.cluster import Cluster
 from server.config import Settings
+from server.ladder import (
+    ClusterMatchmaker,
+    Matchmaker,
+    PlayerData,
+    PlayNow,
+    RankedResults,
+    RankedTables,
+)
+from server.players import Window
 from server.rooms import Clock, RoomRegistry, SeedSource, StoreObserver
 from server.rooms.clock import SYSTEM_CLOCK
 from server.rooms.computer import close_planners, open_planners
@@ -53,44 +64,12 @@ def create_app(
     cluster = Cluster(settings, registry, store) if settings.redis_url is not None else None
     if cluster is not None and isinstance(observer, StoreObserver):
         observer.use_cluster(cluster.match_ids, cluster.epoch_of, cluster.stale)
-
-    @contextlib.asynccontextmanager
-    async def lifespan(app: FastAPI) -> AsyncIterator[None]:
-        await registry.runner.start()
-        open_planners()
-        store.open()
-        if isinstance(observer, StoreObserver):
-            observer.start()
-        if cluster is not None:
-            await cluster.start()
-        elif isinstance(observer, StoreObserver):
-            registry.restore(await store.call(lambda repo: repo.rooms()))
-        await matchmaker.resume()
-        background = [
-            asyncio.create_task(registry.run_sweeper()),
-            asyncio.create_task(registry.run_watchdog()),
-            asyncio.create_task(matchmaker.run()),
-        ]
-        try:
-            yield
-        finally:
-            for task in background:
-                task.cancel()
-                with contextlib.suppress(asyncio.CancelledError):
-                    await task
-            if isinstance(observer, StoreObserver):
-                observer.stop()  # the saved rooms stay saved for the next start
-            registry.close_all(CLOSE_RESTART, "server_restart")
-            await asyncio.sleep(0)  # let the senders see the close
-            if cluster is not None:
-                await store.call(lambda repo: None)  # every room's last write is stored
-                with contextlib.suppress(Exception):  # Redis gone: leases simply expire
-                    await cluster.drain()
-                await cluster.stop()
-            await asyncio.to_thread(store.close)  # every queued write is on disk
-            registry.runner.close()
-            await asyncio.to_thread(close_planners)
-
+    players = PlayerData(store)
+    results = RankedResults(
+        registry, players, observer.match_id if isinstance(observer, StoreObserver) else None
+    )
+    matchmaker = pick_matchmaker(registry, results, cluster)
+    lifespan = _Lifespan(registry, store, observer, cluster, matchmaker)
     app = FastAPI(
         title="Pool online",
         version="1.0",
@@ -106,15 +85,89 @@ def create_app(
     app.state.quotas = ClientQuotas(settings)
     app.state.store = store
     app.state.cluster = cluster
+    app.state.players = players
+    app.state.matchmaker = matchmaker
+    app.state.ranked_tables = RankedTables(results)
     if cluster is not None:
-        install_calls(app, cluster)
-    app.include_router(http_router)
-    app.include_router(matches_router)
-    app.include_router(ws_router)
-    match_ids = observer.match_id if isinstance(observer, StoreObserver) else None
-    matchmaker = install_players(app, registry, store, match_ids, cluster)
+        answer_calls(cluster, registry, settings)
+    for router in (meta_router, rooms_router, matches_router, ws_router, players_router):
+        app.include_router(router)
     _serve_web(app, settings.web_dir)
     return app
+
+
+@dataclass
+class _Lifespan:
+    """What the app starts and stops around serving: the shot runner, the planners, the
+    store, the saved rooms (or the cluster's share of them), Play now and the sweepers."""
+
+    registry: RoomRegistry
+    store: Database
+    observer: RoomObserver
+    cluster: Cluster | None
+    matchmaker: PlayNow
+
+    @contextlib.asynccontextmanager
+    async def __call__(self, app: FastAPI) -> AsyncIterator[None]:  # noqa: ARG002 (FastAPI's signature)
+        await self._start()
+        background = [
+            asyncio.create_task(self.registry.run_sweeper()),
+            asyncio.create_task(self.registry.run_watchdog()),
+            asyncio.create_task(self.matchmaker.run()),
+        ]
+        try:
+            yield
+        finally:
+            for task in background:
+                task.cancel()
+                with contextlib.suppress(asyncio.CancelledError):
+                    await task
+            await self._stop()
+
+    async def _start(self) -> None:
+        registry, store, observer = self.registry, self.store, self.observer
+        await registry.runner.start()
+        open_planners()
+        store.open()
+        if isinstance(observer, StoreObserver):
+            observer.start()
+        if self.cluster is not None:
+            await self.cluster.start()
+        elif isinstance(observer, StoreObserver):
+            registry.restore(await store.call(lambda repo: repo.rooms()))
+        await self.matchmaker.resume()
+
+    async def _stop(self) -> None:
+        registry, store = self.registry, self.store
+        if isinstance(self.observer, StoreObserver):
+            self.observer.stop()  # the saved rooms stay saved for the next start
+        registry.close_all(CLOSE_RESTART, "server_restart")
+        await asyncio.sleep(0)  # let the senders see the close
+        if self.cluster is not None:
+            await store.call(lambda _repo: None)  # every room's last write is stored
+            with contextlib.suppress(Exception):  # Redis gone: leases simply expire
+                await self.cluster.drain()
+            await self.cluster.stop()
+        await asyncio.to_thread(store.close)  # every queued write is on disk
+        registry.runner.close()
+        await asyncio.to_thread(close_planners)
+
+
+def pick_matchmaker(
+    registry: RoomRegistry, results: RankedResults, cluster: Cluster | None
+) -> PlayNow:
+    """The Play now queue: in this process, or in Redis in cluster mode. The lifespan
+    starts its `run` and calls its `resume` after the rooms are restored."""
+    settings = registry.settings
+    window = Window(
+        settings.playnow_window,
+        settings.playnow_widen,
+        settings.playnow_window_max,
+        settings.playnow_computer_after,
+    )
+    if cluster is None:
+        return Matchmaker(registry, results, window)
+    return ClusterMatchmaker(registry, results, window, cluster)
 
 
 def page_sockets(settings: Settings, cluster: Cluster | None) -> Callable[[], Iterable[str]] | None:

@@ -26,6 +26,7 @@ from pydantic_settings import (
     SettingsConfigDict,
 )
 from pydantic_settings.sources.utils import parse_env_vars
+from typing_extensions import override
 
 KIB = 1024
 REPO_ROOT = Path(__file__).resolve().parent.parent
@@ -67,7 +68,7 @@ class Settings(BaseSettings):
 
     shot_clock: Annotated[float, Field(ge=0.0, le=600.0)] = 60.0  # a room may set its own
     min_shot_clock: Annotated[float, Field(gt=0.0, le=600.0)] = 5.0  # smallest non-zero clock
-    max_shot_clock: Annotated[float, Field(gt=0.0, le=600.0)] = 600.0
+    max_shot_clock: Annotated[float, Field(gt=0.0, le=600.0)] = 600.0  # largest a room asks
     grace: Seconds = 60.0  # a dropped player keeps the seat this long
     idle_ttl: PositiveSeconds = 30 * 60.0  # a room nobody is connected to expires after this
     waiting_ttl: PositiveSeconds = 3 * 60.0  # ... or after this if nobody ever joined
@@ -87,9 +88,9 @@ class Settings(BaseSettings):
 
     # The engine ticks at a fixed 120 Hz; a shot's motion goes out whole at the strike, and
     # the room keeps every `frame_every`-th tick of it (where a late joiner's table starts).
-    # `frames_per_message` is no longer used; `welcome` still carries it for old readers.
+    # (`POOL_FRAMES_PER_MESSAGE` is gone with the frame stream; like any `POOL_*` variable
+    # that names no setting, it is ignored.)
     frame_every: Annotated[int, Field(ge=1, le=120)] = 6
-    frames_per_message: Annotated[int, Field(ge=1, le=32)] = 4
     # Processes that simulate shots; 0 (default): threads of this process. On a 2-core
     # machine one worker process was slower under load (docs/performance.md).
     shot_workers: Annotated[int, Field(ge=0, le=64)] = 0
@@ -161,6 +162,14 @@ class Settings(BaseSettings):
     rack_seed: Annotated[int, Field(ge=0, lt=2**31)] | None = None
 
     @model_validator(mode="after")
+    def _shot_clocks(self) -> Settings:
+        if self.min_shot_clock > self.max_shot_clock:
+            raise ValueError("POOL_MIN_SHOT_CLOCK must be at most POOL_MAX_SHOT_CLOCK")
+        if self.shot_clock > self.max_shot_clock:
+            raise ValueError("POOL_SHOT_CLOCK must be at most POOL_MAX_SHOT_CLOCK")
+        return self
+
+    @model_validator(mode="after")
     def _cluster(self) -> Settings:
         if self.redis_url is not None and self.public_url is None:
             raise ValueError("POOL_REDIS_URL needs POOL_PUBLIC_URL (where clients reach this one)")
@@ -187,6 +196,7 @@ class Settings(BaseSettings):
         return value
 
     @classmethod
+    @override
     def settings_customise_sources(
         cls,
         settings_cls: type[BaseSettings],

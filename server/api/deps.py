@@ -1,6 +1,7 @@
 """What routes depend on, as `Annotated` aliases: a route names `Registry` or `Store` in its
 signature instead of reaching into `request.app.state`, so its needs are visible and a test
-can override them (`app.dependency_overrides`).
+can override them (`app.dependency_overrides`). This module alone reads `app.state` (which
+`server.app` fills).
 
 They are `async def` although they only read `app.state`: FastAPI runs a plain `def`
 dependency in a worker thread, and that hand-over (and the GIL's, back) took a third of the
@@ -10,14 +11,17 @@ from __future__ import annotations
 
 from typing import Annotated
 
-from fastapi import Depends, HTTPException
+from fastapi import Depends
 from starlette.requests import HTTPConnection
 
 from server.cluster import Cluster
 from server.config import Settings
-from server.rooms import LiveRoom, RoomRegistry
+from server.ladder import PlayerData, PlayNow, RankedTables
+from server.rooms import RoomRegistry
 from server.store import Database
 
+from .identity import cookie_secret
+from .owner import RoomAt, base_url
 from .quotas import ClientQuotas
 
 
@@ -53,18 +57,50 @@ async def client_id(conn: HTTPConnection) -> str:
     return conn.client.host if conn.client is not None else "unknown"
 
 
-async def get_room(room_id: str, registry: Registry) -> LiveRoom:
-    """The live room of the path's `room_id`, else 404 `unknown_room`."""
-    live = registry.get(room_id)
-    if live is None:
-        raise HTTPException(404, {"code": "unknown_room", "message": "No such room."})
-    return live
-
-
 SettingsDep = Annotated[Settings, Depends(get_settings)]
 Registry = Annotated[RoomRegistry, Depends(get_registry)]
 Store = Annotated[Database, Depends(get_store)]
-RoomDep = Annotated[LiveRoom, Depends(get_room)]
 Quotas = Annotated[ClientQuotas, Depends(get_quotas)]
 ClusterDep = Annotated[Cluster | None, Depends(get_cluster)]
 ClientId = Annotated[str, Depends(client_id)]
+
+
+async def get_players(conn: HTTPConnection) -> PlayerData:
+    """The players' records (profiles, ratings, ranked results)."""
+    data: PlayerData = conn.app.state.players
+    return data
+
+
+async def get_matchmaker(conn: HTTPConnection) -> PlayNow:
+    """The Play now queue: in this process, or in Redis in cluster mode."""
+    matchmaker: PlayNow = conn.app.state.matchmaker
+    return matchmaker
+
+
+async def get_ranked_tables(conn: HTTPConnection) -> RankedTables:
+    tables: RankedTables = conn.app.state.ranked_tables
+    return tables
+
+
+async def get_secret(conn: HTTPConnection) -> str | None:
+    """The asking player's secret (the `pool_player` cookie), if any."""
+    return cookie_secret(conn)
+
+
+async def get_base_url(conn: HTTPConnection, settings: SettingsDep, cluster: ClusterDep) -> str:
+    """This process's address as clients reach it (for `ws_url`)."""
+    return base_url(settings, cluster, str(conn.base_url))
+
+
+async def get_room(room_id: str, registry: Registry, cluster: ClusterDep) -> RoomAt:
+    """The path's `room_id`, wherever it is played (`RoomAt`: its owner's answer in cluster
+    mode, else the room here or 404 `unknown_room`)."""
+    return RoomAt(room_id, registry, cluster)
+
+
+RoomDep = Annotated[RoomAt, Depends(get_room)]
+Players = Annotated[PlayerData, Depends(get_players)]
+Matchmaking = Annotated[PlayNow, Depends(get_matchmaker)]
+RankedTablesDep = Annotated[RankedTables, Depends(get_ranked_tables)]
+Secret = Annotated[str | None, Depends(get_secret)]
+BaseUrl = Annotated[str, Depends(get_base_url)]

@@ -1,6 +1,6 @@
 """Practice's "Show me a shot": the strongest level's plan for the player's shot, as the
-API returns it. It runs where the table is played (routing forwards it to the room's owner
-in cluster mode), since the planner needs the live table."""
+API returns it. It runs where the table is played (`server.api.owner` forwards it to the
+room's owner in cluster mode), since the planner needs the live table."""
 
 from __future__ import annotations
 

@@ -14,6 +14,7 @@ from pydantic import BaseModel
 from server.codec import from_data
 from server.engine import TICK_HZ, BallSet, Table
 from server.protocol import BallRow, StreamRates, frame_rows
+from server.protocol.limits import FRAMES_PER_MESSAGE
 from server.rooms.replay import EngineChanged, replay_motion, stream_replay
 from server.store import MatchRecord, Repository, ShotRecord
 
@@ -65,10 +66,10 @@ class StoredShot(BaseModel):
     shot_id: int
     game: int
     seat: int
-    shot: dict
+    shot: dict[str, Any]
     table: list[float]
-    balls: dict
-    outcome: dict
+    balls: dict[str, Any]
+    outcome: dict[str, Any]
     played_at: float
     replay: str
     engine: str | None  # the engine version that played it (None: not recorded)
@@ -78,7 +79,8 @@ class StoredShot(BaseModel):
 class MatchDetail(MatchBase):
     games: list[GameSummary]
     shots: list[StoredShot]
-    geometry: dict | None  # the table as `state.table` gives it (to draw a replay); None: no shot
+    # the table as `state.table` gives it (to draw a replay); None: no shot
+    geometry: dict[str, Any] | None
     stream: StreamRates  # how a replay is streamed (tick rate and frames)
 
 
@@ -122,7 +124,7 @@ async def show_match(match_id: int, store: Store, settings: SettingsDep) -> dict
         "stream": StreamRates(
             tick_hz=TICK_HZ,
             frame_every=settings.frame_every,
-            frames_per_message=settings.frames_per_message,
+            frames_per_message=FRAMES_PER_MESSAGE,
         ),
     }
 
@@ -151,7 +153,7 @@ def _shot_row(shot: ShotRecord) -> dict[str, Any]:
     }
 
 
-def _resting_rows(balls: dict) -> list[BallRow]:
+def _resting_rows(balls: dict[str, Any]) -> list[BallRow]:
     """The stored balls (exact floats) in the stream's integer rows, cel from the roll."""
     state = BallSet.from_dict(balls)
     return frame_rows(state.ids, state.positions, state.cels(), state.on_table)

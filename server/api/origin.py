@@ -4,6 +4,11 @@ from __future__ import annotations
 
 from urllib.parse import urlsplit
 
+from starlette.requests import HTTPConnection
+
+from server.cluster import Cluster
+from server.config import Settings
+
 _DEFAULT_PORTS = {"http": 80, "https": 443}
 
 
@@ -41,3 +46,15 @@ def origin_allowed(
     if host is None:
         return False
     return urlsplit(origin).netloc.lower() == host.strip().lower()
+
+
+async def socket_allowed(conn: HTTPConnection, settings: Settings, cluster: Cluster | None) -> bool:
+    """May the page that opens this socket do so: its Origin is allowed here, or (cluster
+    mode) it is a page served by any live server of the cluster."""
+    origin, host = conn.headers.get("origin"), conn.headers.get("host")
+    if origin_allowed(origin, host, settings.allowed_origins, settings.public_url):
+        return True
+    if cluster is None:
+        return False
+    peers = (*settings.allowed_origins, *await cluster.fresh_origins())
+    return origin_allowed(origin, host, peers, settings.public_url)

@@ -5,20 +5,17 @@ queue, long-poll for the room, leave, take the computer instead). See docs/proto
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from typing import Annotated, Any
 
-from fastapi import APIRouter, Depends, FastAPI, HTTPException, Path, Query, Request, Response
-from starlette.requests import HTTPConnection
+from fastapi import APIRouter, Depends, HTTPException, Path, Query, Request, Response
 
-from server.cluster import Cluster
+from server.ladder import PlayerData, matched
 from server.players import (
     RANKED_KINDS,
     BadName,
     KindRating,
     Player,
     Waiting,
-    Window,
     check_name,
     default_name,
     new_player_id,
@@ -28,15 +25,11 @@ from server.players import (
     standings,
 )
 from server.protocol.limits import MAX_NAME
-from server.rooms import ActionError, Room, RoomRegistry
-from server.store import Database
+from server.rooms import ActionError
 
-from .deps import ClientId, Quotas, SettingsDep
-from .identity import COOKIE, cookie_secret
+from .deps import ClientId, Matchmaking, Players, Quotas, Registry, Secret, SettingsDep
+from .identity import COOKIE
 from .player_schemas import Leaderboard, PlayNow, PlayNowStatus, Profile, Rename
-from .playerdata import PlayerData
-from .playnow import Matchmaker, PlayNowQueue, matched
-from .playnow_cluster import ClusterMatchmaker
 from .schemas import ErrorResponse
 
 router = APIRouter(tags=["players"])
@@ -52,28 +45,8 @@ _ERRORS: dict[int | str, dict[str, Any]] = {
 GameParam = Annotated[str, Path(pattern="^(eight_ball|nine_ball)$")]
 
 
-def player_data_of(conn: HTTPConnection) -> PlayerData:
-    data: PlayerData = conn.app.state.players
-    return data
-
-
-async def get_player_data(conn: HTTPConnection) -> PlayerData:
-    """`async`: a plain `def` dependency would run in a worker thread (server.api.deps)."""
-    return player_data_of(conn)
-
-
-async def get_matchmaker(conn: HTTPConnection) -> PlayNowQueue:
-    matchmaker: PlayNowQueue = conn.app.state.matchmaker
-    return matchmaker
-
-
-Data = Annotated[PlayerData, Depends(get_player_data)]
-Matches = Annotated[PlayNowQueue, Depends(get_matchmaker)]
-
-
-async def known_player(request: Request, data: Data) -> Player:
+async def known_player(secret: Secret, data: Players) -> Player:
     """The player of the cookie, else 401 `no_player` (the page makes one on load)."""
-    secret = cookie_secret(request)
     player = None if secret is None else await data.by_secret(secret_hash(secret))
     if player is None:
         raise HTTPException(
@@ -97,7 +70,7 @@ def _set_cookie(response: Response, request: Request, secret: str, secure: bool)
     )
 
 
-async def _profile(data: Data, player: Player, now: float, me: bool) -> dict[str, Any]:
+async def _profile(data: PlayerData, player: Player, now: float, me: bool) -> dict[str, Any]:
     ratings = await data.ratings(player.id, RANKED_KINDS)
     recent = await data.recent(player.id, RECENT)
     played = await data.matches(player.id, RECENT)
@@ -162,23 +135,20 @@ def _rating_view(k: KindRating, now: float) -> dict[str, Any]:
 async def my_profile(
     request: Request,
     response: Response,
-    data: Data,
+    data: Players,
     settings: SettingsDep,
     quotas: Quotas,
     client: ClientId,
-    matches: Matches,
+    registry: Registry,
+    secret: Secret,
 ) -> dict[str, Any]:
     """The asking player's profile. On a first visit (no valid cookie) a player is made and
     its secret set in the `pool_player` cookie (HttpOnly, SameSite=Lax). 429: this address
     made too many profiles within the rate window."""
-    now = matches.registry.clock.wall()
-    secret = cookie_secret(request)
+    now = registry.clock.wall()
     player = None if secret is None else await data.by_secret(secret_hash(secret))
     if player is None:
-        if not quotas.allow("player", client):
-            raise HTTPException(
-                429, {"code": "rate_limited", "message": "Too many new profiles; wait a minute."}
-            )
+        quotas.enforce("player", client)
         player_id = new_player_id()
         player = Player(player_id, default_name(player_id), now)
         secret = new_secret()
@@ -189,7 +159,7 @@ async def my_profile(
 
 
 @router.patch("/api/players/me", response_model=Profile, responses=_ERRORS)
-async def rename(body: Rename, me: Me, data: Data, matches: Matches) -> dict[str, Any]:
+async def rename(body: Rename, me: Me, data: Players, registry: Registry) -> dict[str, Any]:
     """A new display name (the rule of a seat's name; 422 `bad_name`). Rooms already
     joined keep the name they were joined with."""
     try:
@@ -198,31 +168,31 @@ async def rename(body: Rename, me: Me, data: Data, matches: Matches) -> dict[str
         raise HTTPException(422, {"code": "bad_name", "message": str(exc)}) from None
     await data.rename(me.id, name)
     renamed = Player(me.id, name, me.created_at)
-    return await _profile(data, renamed, matches.registry.clock.wall(), me=True)
+    return await _profile(data, renamed, registry.clock.wall(), me=True)
 
 
 @router.get("/api/players/{player_id}", response_model=Profile, responses=_ERRORS)
 async def player_profile(
-    player_id: Annotated[str, Path(max_length=32)], data: Data, matches: Matches
+    player_id: Annotated[str, Path(max_length=32)], data: Players, registry: Registry
 ) -> dict[str, Any]:
     """Anyone's public profile: name, ratings, recent ranked matches (404 `unknown_player`)."""
     player = await data.get(player_id)
     if player is None:
         raise HTTPException(404, {"code": "unknown_player", "message": "No such player."})
-    return await _profile(data, player, matches.registry.clock.wall(), me=False)
+    return await _profile(data, player, registry.clock.wall(), me=False)
 
 
 @router.get("/api/leaderboard/{game}", response_model=Leaderboard)
 async def leaderboard(
     game: GameParam,
-    data: Data,
-    matches: Matches,
+    data: Players,
+    registry: Registry,
     limit: Annotated[int, Query(ge=1, le=LEADERBOARD_MAX)] = 100,
 ) -> dict[str, Any]:
     """Ranked players by rating - 2 RD (highest first), provisional players apart."""
     rows = await data.rated(game)
     names = {k.player_id: name for k, name in rows}
-    ranked, provisional = standings((k for k, _ in rows), matches.registry.clock.wall())
+    ranked, provisional = standings((k for k, _ in rows), registry.clock.wall())
 
     def view(standing: Any) -> dict[str, Any]:
         return {
@@ -240,42 +210,41 @@ async def leaderboard(
     }
 
 
-def remember_seat(request: Request, room_id: str, seat: int) -> None:
-    """A seat taken through `POST /api/rooms/{room_id}/join`: with a profile's cookie, the
-    match played there goes on the profile (queued; the join does not wait for it)."""
-    secret = cookie_secret(request)
+def remember_seat(
+    data: PlayerData, secret: str | None, room_id: str, seat: int, now: float
+) -> None:
+    """A seat taken through `POST /api/rooms/{room_id}/join`: with a profile's cookie
+    (`secret`), the match played there goes on the profile (queued; the join does not wait
+    for it)."""
     if secret is not None:
-        data = player_data_of(request)
-        data.seated(secret_hash(secret), room_id, seat, request.app.state.registry.clock.wall())
+        data.seated(secret_hash(secret), room_id, seat, now)
 
 
 # ---- Play now -----------------------------------------------------------------------------
 
 
-def _queue_quota(quotas: Quotas, player: Player) -> None:
-    if not quotas.allow("queue", player.id):
-        raise HTTPException(
-            429, {"code": "rate_limited", "message": "Too many Play now presses; wait a minute."}
-        )
-
-
 @router.post("/api/playnow", response_model=PlayNowStatus, responses=_ERRORS)
 async def play_now(
-    body: PlayNow, request: Request, me: Me, data: Data, matches: Matches, quotas: Quotas
+    body: PlayNow,
+    me: Me,
+    secret: Secret,
+    data: Players,
+    registry: Registry,
+    matches: Matchmaking,
+    quotas: Quotas,
 ) -> dict[str, Any]:
     """Queue for a ranked game of `game` at the player's rating; paired at once when
     someone suitable waits (`matched`), else `waiting`: long-poll `GET /api/playnow`.
     Pressing again keeps the player's one place. 429: too many joins and leaves."""
-    _queue_quota(quotas, me)
-    secret = cookie_secret(request)
-    assert secret is not None
+    quotas.enforce("queue", me.id)
+    assert secret is not None  # `me` was found by it
     rating = (await data.ratings(me.id, (body.game,)))[body.game]
     # Read before queueing: `join` itself is one step on the loop (one entry a player).
     entry = Waiting(
         me.id,
         me.name,
         body.game,
-        rating.at(matches.registry.clock.wall()).rating,
+        rating.at(registry.clock.wall()).rating,
         matches.now(),
         seat_key(secret),
     )
@@ -289,7 +258,7 @@ async def play_now(
 @router.get("/api/playnow", response_model=PlayNowStatus, responses=_ERRORS)
 async def play_now_status(
     me: Me,
-    matches: Matches,
+    matches: Matchmaking,
     settings: SettingsDep,
     wait: Annotated[float, Query(ge=0, le=60, allow_inf_nan=False)] = 0.0,
 ) -> dict[str, Any]:
@@ -300,51 +269,21 @@ async def play_now_status(
 
 
 @router.delete("/api/playnow", response_model=PlayNowStatus, responses=_ERRORS)
-async def leave_queue(me: Me, matches: Matches, quotas: Quotas) -> dict[str, Any]:
+async def leave_queue(me: Me, matches: Matchmaking, quotas: Quotas) -> dict[str, Any]:
     """Leave the queue (nothing happens if not in it)."""
-    _queue_quota(quotas, me)
+    quotas.enforce("queue", me.id)
     await matches.dequeue(me.id)
     return await matches.status(me.id)
 
 
 @router.post("/api/playnow/computer", response_model=PlayNowStatus, responses=_ERRORS)
-async def play_the_computer(request: Request, me: Me, matches: Matches) -> dict[str, Any]:
+async def play_the_computer(me: Me, secret: Secret, matches: Matchmaking) -> dict[str, Any]:
     """Take the offered computer (409 `not_offered` before the wait is over): a private
     room against the level nearest the player's rating, not rated."""
-    secret = cookie_secret(request)
-    assert secret is not None
+    assert secret is not None  # `me` was found by it
     try:
         assignment, level = await matches.take_computer(me.id, seat_key(secret))
     except ActionError as exc:
         code = 409 if exc.code == "not_offered" else 503
         raise HTTPException(code, {"code": exc.code, "message": exc.message}) from None
     return {**matched(assignment), "computer": level}
-
-
-def install(
-    app: FastAPI,
-    registry: RoomRegistry,
-    store: Database,
-    match_ids: Callable[[Room], int | None] | None,
-    cluster: Cluster | None = None,
-) -> PlayNowQueue:
-    """Add the players' routes and the Play now queue to `app`: in this process, or in
-    Redis in cluster mode. The lifespan starts its `run` and calls its `resume` after the
-    rooms are restored."""
-    settings = registry.settings
-    data = PlayerData(store)
-    window = Window(
-        settings.playnow_window,
-        settings.playnow_widen,
-        settings.playnow_window_max,
-        settings.playnow_computer_after,
-    )
-    matchmaker: PlayNowQueue
-    if cluster is None:
-        matchmaker = Matchmaker(registry, data, window, match_ids)
-    else:
-        matchmaker = ClusterMatchmaker(registry, data, window, cluster, match_ids)
-    app.state.players = data
-    app.state.matchmaker = matchmaker
-    app.include_router(router)
-    return matchmaker

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
@@ -76,7 +76,7 @@ class RoomList(BaseModel):
 
 
 class RoomDetail(RoomSummary):
-    state: dict
+    state: dict[str, Any]
     ws_url: str  # where to connect for this room now
 
 
@@ -106,7 +106,7 @@ class StreamStats(BaseModel):
     late_p99_ms: float | None
     late_max_ms: float | None
     frames_sent: int  # since start
-    frames_skipped: int  # since start: stale when their turn came (server overloaded)
+    frames_skipped: int  # since start: messages dropped for clients that were behind
     shots: int  # shots whose stream started in the window
     start_p50_ms: float | None  # from `shoot` to the start of the shot's stream
     start_p99_ms: float | None

@@ -23,7 +23,7 @@ from server.rooms.connection import Connection, cancel_quietly
 from server.rooms.ratelimit import TokenBucket
 
 from .deps import ClientId, ClusterDep, Quotas, Registry, SettingsDep
-from .origin import origin_allowed
+from .origin import socket_allowed
 
 router = APIRouter()
 log = logging.getLogger(__name__)
@@ -43,12 +43,7 @@ async def room_socket(
     client: ClientId,
     token: str | None = None,
 ) -> None:
-    origin, host = websocket.headers.get("origin"), websocket.headers.get("host")
-    allowed = origin_allowed(origin, host, settings.allowed_origins, settings.public_url)
-    if not allowed and cluster is not None:  # a page served by any live server may connect
-        peers = (*settings.allowed_origins, *await cluster.fresh_origins())
-        allowed = origin_allowed(origin, host, peers, settings.public_url)
-    if not allowed:
+    if not await socket_allowed(websocket, settings, cluster):
         await websocket.close(CLOSE_POLICY, "origin_not_allowed")
         return
     live = registry.get(room_id)

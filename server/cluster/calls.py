@@ -17,6 +17,7 @@ from redis.asyncio import Redis
 from redis.exceptions import RedisError
 
 from . import keys
+from .background import Background
 
 log = logging.getLogger(__name__)
 Handler = Callable[[dict[str, Any]], Awaitable[tuple[int, dict[str, Any]]]]
@@ -44,6 +45,7 @@ class Inbox:
         self.on_adopt: Adopt | None = None  # rooms handed over to this process
         self._calls: dict[str, asyncio.Future[Forwarded]] = {}
         self._pubsub = redis.pubsub(ignore_subscribe_messages=True)
+        self.background = Background()  # calls being answered, rooms being adopted
 
     async def start(self) -> None:
         await self._pubsub.subscribe(keys.inbox(self.node))
@@ -92,15 +94,14 @@ class Inbox:
 
     def _received(self, data: dict[str, Any]) -> None:
         kind = data.get("kind")
-        loop = asyncio.get_running_loop()
         if kind == "reply":
             future = self._calls.get(data["id"])
             if future is not None and not future.done():
                 future.set_result(Forwarded(int(data["status"]), data["body"]))
         elif kind == "call":
-            loop.create_task(self._answer(data))
+            self.background.start(self._answer(data))
         elif kind == "adopt" and self.on_adopt is not None:
-            loop.create_task(self._adopt(self.on_adopt, data["rooms"], data["from"]))
+            self.background.start(self._adopt(self.on_adopt, data["rooms"], data["from"]))
 
     async def _answer(self, data: dict[str, Any]) -> None:
         handler = self.handlers.get(data["op"])

@@ -28,6 +28,7 @@ from server.rooms import LiveRoom, RoomRegistry
 from server.store import Database, RoomSnapshot, StaleOwner
 
 from . import keys, scripts
+from .background import Background
 from .calls import Inbox, Unreachable
 from .directory import Directory
 from .match_ids import MatchIds
@@ -69,10 +70,11 @@ class Cluster:
         self.match_ids = MatchIds(store)
         self.peers: dict[str, str] = {}  # live node id -> public url (last heartbeat)
         self.dead: list[str] = []  # processes that stopped announcing themselves
-        self._tasks: list[asyncio.Task] = []
+        self._tasks: list[asyncio.Task[None]] = []
         self._taking: set[str] = set()
-        self._recovering: asyncio.Task | None = None
+        self._recovering: asyncio.Task[None] | None = None
         self._opening: dict[str, asyncio.Task[None]] = {}  # rooms being registered
+        self._clearing = Background()  # the shared entries of rooms closed here
         self._peers_seen = 0.0  # loop time `peers` was last refreshed out of turn
         self._acquire = self.redis.register_script(scripts.ACQUIRE)
         self._renew = self.redis.register_script(scripts.RENEW)
@@ -187,6 +189,20 @@ class Cluster:
         wanted = [r for r in room_ids if r not in self.epochs and r not in self._taking]
         if not wanted:
             return []
+        taken = await self._lease(wanted, source)
+        if not taken:
+            return []
+        try:
+            restored = await self._adopt(taken, source)
+        finally:
+            self._taking.difference_update(taken)
+        if restored:
+            log.info("cluster: took over %d rooms (from %s)", len(restored), source or "?")
+        return restored
+
+    async def _lease(self, wanted: list[str], source: str | None) -> dict[str, int]:
+        """The leases of `wanted` this process won, with their new epochs (each marked as
+        being taken)."""
         # The epochs the store has seen: a new one must be above them even if Redis lost
         # its counter (else an old owner's epoch could come round again).
         floors = await self.store.call(lambda repo: {r: repo.room_epoch(r) or 0 for r in wanted})
@@ -205,33 +221,30 @@ class Cluster:
                 continue
             self._taking.add(room_id)
             taken[room_id] = int(epoch)
-        if not taken:
-            return []
-        restored: list[str] = []
-        try:
-            claimed = {}
-            for room_id, epoch in taken.items():
-                try:
-                    claimed[room_id] = await self._claim(room_id, epoch)
-                except StaleOwner:
-                    log.warning("cluster: room %s has a newer owner than %d", room_id, epoch)
-                except Exception as exc:  # the store out of reach: a later heartbeat
-                    log.warning("cluster: room %s not claimed: %s", room_id, exc)
+        return taken
+
+    async def _adopt(self, taken: dict[str, int], source: str | None) -> list[str]:
+        """Claim the leased rooms in the store and restore them here; returns those now
+        played here (a lease given back for each that could not be)."""
+        claimed = {}
+        for room_id, epoch in taken.items():
             try:
-                snaps = await self.store.call(
-                    lambda repo: [s for r in claimed if (s := repo.room(r)) is not None]
-                )
-            except Exception:
-                for room_id, epoch in claimed.items():
-                    await self._let_go(room_id, epoch)
-                raise
-            restored = self._restore(snaps, claimed)
-            gone = [r for r in claimed if r not in restored]
-            await self._settle(restored, gone, source)
-        finally:
-            self._taking.difference_update(taken)
-        if restored:
-            log.info("cluster: took over %d rooms (from %s)", len(restored), source or "?")
+                claimed[room_id] = await self._claim(room_id, epoch)
+            except StaleOwner:
+                log.warning("cluster: room %s has a newer owner than %d", room_id, epoch)
+            except Exception as exc:  # the store out of reach: a later heartbeat
+                log.warning("cluster: room %s not claimed: %s", room_id, exc)
+        try:
+            snaps = await self.store.call(
+                lambda repo: [s for r in claimed if (s := repo.room(r)) is not None]
+            )
+        except Exception:
+            for room_id, epoch in claimed.items():
+                await self._let_go(room_id, epoch)
+            raise
+        restored = self._restore(snaps, claimed)
+        gone = [r for r in claimed if r not in restored]
+        await self._settle(restored, gone, source)
         return restored
 
     def _restore(self, snaps: list[RoomSnapshot], epochs: dict[str, int]) -> list[str]:
@@ -311,7 +324,7 @@ class Cluster:
         if epoch is not None:
             loop = asyncio.get_running_loop()
             loop.call_soon(self.epochs.pop, room_id, None)
-            loop.create_task(self._clear(room_id, epoch))
+            self._clearing.start(self._clear(room_id, epoch))
 
     async def _clear(self, room_id: str, epoch: int) -> None:
         with contextlib.suppress(RedisError):
@@ -479,6 +492,6 @@ class Cluster:
         return await self.take(orphans)
 
 
-def _log_failure(task: asyncio.Task) -> None:
+def _log_failure(task: asyncio.Task[object]) -> None:
     if not task.cancelled() and task.exception() is not None:
         log.warning("cluster: a new room is not registered yet: %s", task.exception())

@@ -21,7 +21,7 @@ class MatchIds:
         self.store = store
         self.ready: deque[int] = deque()
         self.last = 0
-        self._refilling: asyncio.Task | None = None
+        self._refilling: asyncio.Task[None] | None = None
 
     def __iter__(self) -> MatchIds:
         return self

@@ -1,7 +1,7 @@
 """Players: profiles without passwords, Glicko-2 ratings per game kind, the Play now queue.
 
-Pure: no I/O, no asyncio, no clock (times are passed in). `api.players` and `api.playnow`
-drive it; `store.players` keeps its records.
+Pure: no I/O, no asyncio, no clock (times are passed in). `server.ladder` (Play now, ranked
+results) and `api.players` drive it; `store.players` keeps its records.
 """
 
 from .glicko2 import Rating, expected_score, idle, rate

@@ -13,6 +13,10 @@ PROTOCOL_VERSION = 1
 MAX_ANGLE = 10.0  # radians; any direction fits in [-pi, pi], this only bounds junk
 MAX_CHAT = 200  # characters of one chat line
 MAX_NAME = 24  # characters of a player's name
+# Frames a `frame` message carried when shots were streamed frame by frame. A shot's
+# motion now goes whole at the strike; `welcome` and a match's `stream` still carry the
+# old value for clients that read it.
+FRAMES_PER_MESSAGE = 4
 
 
 class Limits(BaseModel):

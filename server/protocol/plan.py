@@ -39,15 +39,16 @@ def message_text(kind: str, seq: int, body: str) -> str:
 
 
 class Timed(NamedTuple):
-    """A point of the shot being shown, `at` seconds after the strike: the room remembers
-    the frame a member joining now is shown (`Room.show`)."""
+    """A point of the shot being shown: the room remembers the frame a member joining now
+    is shown (`Room.show`)."""
 
-    at: float
-    kind: str  # "frame"
-    body: str  # unused since the `motion` message ("")
-    droppable: bool
-    tick: int = 0
-    frame: int | None = None  # the index in the plan's `StreamFrames`
+    tick: int  # the engine tick it shows
+    frame: int  # its index in the plan's `StreamFrames`
+
+    @property
+    def at(self) -> float:
+        """Seconds after the strike it is due."""
+        return self.tick / TICK_HZ
 
 
 def frame_rows(
@@ -108,14 +109,12 @@ class ShotPlan:
         """The frame of the stream `elapsed` seconds after the strike (the latest due)."""
         ticks = self.frames.ticks
         j = max(0, int(np.searchsorted(ticks, elapsed * TICK_HZ, side="right")) - 1)
-        tick = int(ticks[j])
-        return Timed(tick / TICK_HZ, "frame", "", True, tick=tick, frame=j)
+        return Timed(int(ticks[j]), j)
 
     @property
     def last(self) -> Timed:
         j = len(self.frames) - 1
-        tick = int(self.frames.ticks[j])
-        return Timed(tick / TICK_HZ, "frame", "", False, tick=tick, frame=j)
+        return Timed(int(self.frames.ticks[j]), j)
 
 
 def stream_frames(result: ShotResult, frame_every: int) -> StreamFrames:

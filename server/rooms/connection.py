@@ -39,6 +39,7 @@ class Connection:
     send_timeout: float = 5.0
     id: int = field(default_factory=lambda: next(_ids))
     dropped: int = 0  # messages skipped because the client was behind
+    on_drop: Callable[[], None] | None = None  # told of each (the server's count of them)
     close_code: int | None = None  # set when the room wants this connection gone
     close_reason: str = ""
     flushing: bool = False  # closing, but sending what is queued first
@@ -65,7 +66,7 @@ class Connection:
             self._drop_oldest(DROPPABLE) or self._drop_oldest(SOCIAL)
         ):
             if priority != GAME:
-                self.dropped += 1
+                self._count_drop()
                 return
             self.close(CLOSE_TOO_SLOW, "too_slow")
             return
@@ -77,10 +78,15 @@ class Connection:
         for i, (_, kind) in enumerate(self._queue):
             if kind == priority:
                 del self._queue[i]
-                self.dropped += 1
+                self._count_drop()
                 self._social -= priority == SOCIAL
                 return True
         return False
+
+    def _count_drop(self) -> None:
+        self.dropped += 1
+        if self.on_drop is not None:
+            self.on_drop()
 
     def chat_allowed(self) -> bool:
         """Spend a chat credit (a bucket per sender, as lichess does)."""

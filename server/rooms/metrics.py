@@ -1,10 +1,11 @@
 """How late the rooms send their frames: the server's own view of stream health.
 
-Each room records, for every frame message it sends, how far behind the shot's schedule
-the send happened (loop time), and for every shot how long it took from `shoot` to the
-start of its stream (simulating, planning, judging, and any wait for a thread);
-`GET /api/stats` reports percentiles over a recent window. Measured on the server, it
-separates a slow server from a slow network or client.
+Each room records, for every frame message it sends (a shot's `motion`), how far behind
+the shot's schedule the send happened (loop time), and for every shot how long it took
+from `shoot` to the start of its stream (simulating, planning, judging, and any wait for a
+thread); `GET /api/stats` reports percentiles over a recent window. Measured on the server,
+it separates a slow server from a slow network or client. Members' outboxes count the
+messages they drop for a client that is behind (`skipped`): a slow network or client.
 """
 
 from __future__ import annotations
@@ -27,7 +28,9 @@ class StreamMetrics:
 
     capacity: int = 100_000
     frames_sent: int = 0
-    frames_skipped: int = 0  # stale when their turn came: a newer frame was already due
+    # Messages dropped from a member's full outbox: aim relays first, then chat and
+    # presence (a `motion` or any game message is never dropped: its client is closed).
+    frames_skipped: int = 0
     _samples: deque[tuple[float, float]] = field(default_factory=deque)  # (time, late)
     _starts: deque[tuple[float, float]] = field(default_factory=deque)  # (time, seconds)
 
@@ -38,6 +41,7 @@ class StreamMetrics:
         self._samples.append((now, max(0.0, late)))
 
     def skipped(self) -> None:
+        """A member's outbox dropped a message: its client was behind."""
         self.frames_skipped += 1
 
     def shot_started(self, now: float, seconds: float) -> None:

@@ -87,8 +87,7 @@ class RoomRegistry:
         )
         if opponent is not None:  # the computer takes the second seat at once
             room.add_computer(opponent)
-        live = LiveRoom(room, self.settings, self.observer, self.clock)
-        self._share(live)
+        live = self._live(room)
         self.rooms[room_id] = live
         self._listed = None
         if owner is not None:
@@ -116,10 +115,9 @@ class RoomRegistry:
                 if self.observer is not None:
                     self.observer.room_unreadable(snap.room_id)
                 continue
-            live = LiveRoom(saved.room, self.settings, self.observer, self.clock)
+            live = self._live(saved.room)
             if self.observer is not None:
                 self.observer.room_restored(saved.room, saved.match_id)
-            self._share(live)
             self.rooms[saved.room.room_id] = live
             self._listed = None
             live.resume(saved.pending)
@@ -128,9 +126,16 @@ class RoomRegistry:
             log.info("restored %d rooms", len(restored))
         return restored
 
-    def _share(self, live: LiveRoom) -> None:
-        live.metrics = self.metrics
-        live.runner = self.runner
+    def _live(self, room: Room) -> LiveRoom:
+        """`room` on the loop, with the shot runner and stream metrics all rooms share."""
+        return LiveRoom(
+            room,
+            self.settings,
+            self.observer,
+            self.clock,
+            runner=self.runner,
+            metrics=self.metrics,
+        )
 
     def get(self, room_id: str) -> LiveRoom | None:
         return self.rooms.get(room_id)

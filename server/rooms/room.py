@@ -351,7 +351,7 @@ class Room:
 
     def show(self, timed: Timed, frames: StreamFrames) -> None:
         """The stream has reached `timed`: remember what a member joining now must see."""
-        if self.shot is None or timed.frame is None:
+        if self.shot is None:
             return
         self.shot.shown = (frames, timed.frame)
         self.shot.tick = timed.tick

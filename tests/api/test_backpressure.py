@@ -25,7 +25,7 @@ def spectator_connection(client, room_id):
     return live, conn
 
 
-async def _never_returns(text: str) -> None:
+async def _never_returns(_text: str) -> None:
     await asyncio.Event().wait()
 
 
@@ -65,7 +65,7 @@ def test_slow_spectator_loses_aim_relays_first_never_the_shot(settings):
         with connect(client, room_id, ta) as a, connect(client, room_id) as s:
             greet(a)
             greet(s)
-            live, slow = spectator_connection(client, room_id)
+            _, slow = spectator_connection(client, room_id)
             fast_text, fast_bytes = slow.send_text, slow.send_bytes
             released = threading.Event()
 
@@ -91,3 +91,23 @@ def test_slow_spectator_loses_aim_relays_first_never_the_shot(settings):
     (motion,) = [m for m in player if m["type"] == "motion"]
     assert [m for m in watcher if m["type"] == "motion"] == [motion]
     assert watcher[-1] == player[-1]  # the result
+
+
+def test_stats_count_the_messages_dropped_for_slow_clients(settings):
+    """`frames_skipped` in `GET /api/stats`: what members' outboxes dropped because their
+    client was behind (here a stuck spectator's aim relays)."""
+    with make_client(settings, send_queue=8, send_timeout=30.0) as client:
+        room_id, ta, _ = seated_room(client)
+        with connect(client, room_id, ta) as a, connect(client, room_id) as s:
+            greet(a)
+            greet(s)
+            assert client.get("/api/stats").json()["stream"]["frames_skipped"] == 0
+            _, stuck = spectator_connection(client, room_id)
+            stuck.send_text = _never_returns
+            receive_until(a, "presence")
+            for i in range(20):  # more relays than the outbox holds
+                a.send_json({"type": "aim", "angle": i / 100, "power": 0.5})
+            a.send_json({"type": "ping", "id": 1})
+            receive_until(a, "pong")  # the relays have all been handed out
+            skipped = client.get("/api/stats").json()["stream"]["frames_skipped"]
+            assert skipped == stuck.dropped > 0

@@ -41,12 +41,12 @@ def test_the_database_path_is_a_setting_with_its_older_name_kept():
     ("variable", "value"),
     [
         ("POOL_FRAME_EVERY", "0"),
-        ("POOL_FRAMES_PER_MESSAGE", "-1"),
         ("POOL_GRACE", "abc"),
         ("POOL_SEND_QUEUE", "1e9"),
         ("POOL_PACE", "0"),
         ("POOL_WS_DEFLATE", "maybe"),
         ("POOL_MAX_ROOMS", "0"),
+        ("POOL_MAX_SHOT_CLOCK", "601"),
         ("POOL_RATE_PER_SECOND", "nan"),
         ("POOL_SOCKET_ORIGINS", "wss://a.example; script-src *"),  # no more policy through it
         ("POOL_SOCKET_ORIGINS", "https://a.example"),  # sockets only
@@ -56,6 +56,28 @@ def test_a_bad_value_is_refused_with_the_variable_named(variable: str, value: st
     with pytest.raises(SettingsError) as caught:
         Settings.from_env({variable: value})
     assert f"{variable}={value!r}" in str(caught.value)
+
+
+def test_a_removed_setting_left_in_the_environment_is_ignored(
+    monkeypatch: pytest.MonkeyPatch,
+):
+    """`POOL_FRAMES_PER_MESSAGE` named a setting of the frame stream: a deployment that
+    still sets it must start as before."""
+    assert Settings.from_env({"POOL_FRAMES_PER_MESSAGE": "4"}) == Settings()
+    monkeypatch.setenv("POOL_FRAMES_PER_MESSAGE", "-1")
+    started = Settings.from_env()  # no `SettingsError`
+    monkeypatch.delenv("POOL_FRAMES_PER_MESSAGE")
+    assert started == Settings.from_env()
+
+
+def test_the_shot_clocks_fit_under_the_maximum():
+    assert Settings.from_env({"POOL_MAX_SHOT_CLOCK": "120"}).max_shot_clock == 120.0
+    for env in (
+        {"POOL_MAX_SHOT_CLOCK": "30"},  # under the default clock, 60
+        {"POOL_MAX_SHOT_CLOCK": "4", "POOL_SHOT_CLOCK": "0"},  # under the minimum, 5
+    ):
+        with pytest.raises(SettingsError, match="POOL_MAX_SHOT_CLOCK"):
+            Settings.from_env(env)
 
 
 def test_settings_built_in_code_ignore_the_environment(monkeypatch: pytest.MonkeyPatch):

@@ -7,6 +7,7 @@ import re
 import pytest
 from fastapi.testclient import TestClient
 
+from server.config import Settings
 from server.rooms.clock import ManualClock
 from tests.support.games import BREAK_MESSAGE
 from tests.support.messages import greet, receive_until
@@ -74,6 +75,21 @@ def test_shot_clock_below_minimum_is_refused(settings):
         assert c.post("/api/rooms", json={"game": "eight_ball", "shot_clock": 0}).status_code == 201
 
 
+def test_shot_clock_above_the_maximum_is_refused(settings):
+    """`POOL_MAX_SHOT_CLOCK` bounds the clock a new room may ask for."""
+    bounded = Settings.from_env({"POOL_MAX_SHOT_CLOCK": "120"})
+    with make_client(settings, max_shot_clock=bounded.max_shot_clock) as c:
+        response = c.post("/api/rooms", json={"game": "eight_ball", "shot_clock": 121})
+        assert response.status_code == 422
+        assert response.json()["detail"] == {
+            "code": "bad_shot_clock",
+            "message": "The shot clock is at most 120 seconds.",
+        }
+        created = c.post("/api/rooms", json={"game": "eight_ball", "shot_clock": 120})
+        assert created.status_code == 201 and created.json()["shot_clock"] == 120.0
+        assert c.get("/api/rooms").json()["total"] == 1  # the refused one was not opened
+
+
 def test_list_rooms_shows_game_status_players_and_spectators(settings):
     clock = ManualClock(now=1_767_000_000.0)
     with TestClient(app_with(settings, clock=clock.clock)) as client:
@@ -133,6 +149,23 @@ def test_show_room_and_unknown_room(client):
     assert missing.status_code == 404
     assert missing.json()["detail"]["code"] == "unknown_room"
     assert client.post("/api/rooms/nosuchroom00/join", json={"name": "A"}).status_code == 404
+
+
+def test_an_unknown_room_is_refused_after_the_body_and_the_quota(settings):
+    """Every route about one room answers 404 `unknown_room` the same way, and only once
+    its body is valid (422 first) and the client is within its quota (429 first)."""
+    with make_client(settings, join_rate="1/minute") as client:
+        hint = client.post("/api/rooms/nosuchroom00/hint", json={"token": "t"})
+        assert hint.status_code == 404
+        assert hint.json() == {"detail": {"code": "unknown_room", "message": "No such room."}}
+        assert client.post("/api/rooms/nosuchroom00/hint", json={}).status_code == 422
+        assert client.post("/api/rooms/nosuchroom00/join", json={"name": ""}).status_code == 422
+        joined = client.post("/api/rooms/nosuchroom00/join", json={"name": "A"})
+        assert joined.status_code == 404
+        assert joined.json() == hint.json()
+        again = client.post("/api/rooms/nosuchroom00/join", json={"name": "A"})
+        assert again.status_code == 429
+        assert again.json()["detail"]["code"] == "rate_limited"
 
 
 def test_join_gives_seats_then_refuses_the_third(client):

@@ -72,7 +72,7 @@ async def play(address: str, room_id: str, tokens: list[str]) -> None:
         assert resumed[-1]["match"]["turn"] == 0
         await send(a, shoot_message(EIGHT_BALL_SCRATCH))
         second = await until(s, "state")
-        result = [m for m in second if m["type"] == "shot_result"][0]
+        result = next(m for m in second if m["type"] == "shot_result")
         assert result["shot"] == 2 and result["outcome"]["shooter"] == 0
         assert [f["code"] for f in result["outcome"]["fouls"]] == ["no_contact", "scratch"]
         assert second[-1]["match"]["turn"] == 1

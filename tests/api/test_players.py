@@ -193,7 +193,7 @@ def wave(client: TestClient) -> int:
     return client.portal.call(client.app.state.matchmaker.wave)
 
 
-def test_the_window_widens_until_distant_ratings_meet(clocked_client, settings, clock):
+def test_the_window_widens_until_distant_ratings_meet(clocked_client, clock):
     store = clocked_client.app.state.store
     ana, ben = Visitor(clocked_client), Visitor(clocked_client)
     strong = RatingRecord(ben.id, "eight_ball", 1850.0, 60.0, 0.06, 40, 30, clock.now)
@@ -357,7 +357,7 @@ def test_joining_and_leaving_the_queue_is_rate_limited(settings, clock):
         assert Visitor(client).call("DELETE", "/api/playnow").status_code == 200  # per player
 
 
-def test_new_profiles_are_rate_limited_per_address(settings, clock):
+def test_new_profiles_are_rate_limited_per_address(settings):
     with TestClient(app_with(settings.replace(player_create_rate="2/minute"))) as client:
         Visitor(client)
         Visitor(client)

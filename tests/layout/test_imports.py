@@ -1,5 +1,6 @@
-"""The import graph: layers point one way (`api → rooms → protocol, store, rules → engine`)
-and no module imports itself back through others. Read from the source with `ast`."""
+"""The import graph: layers point one way (`api → ladder → cluster → rooms → protocol, store,
+rules → engine`) and no module imports itself back through others; `server/api` is
+transport only. Read from the source with `ast`."""
 
 from __future__ import annotations
 
@@ -25,11 +26,13 @@ ALLOWED: dict[str, set[str]] = {
     "rooms": {"protocol", "store", "ai", "rules", "engine", "codec", "config", "priority"},
     # cluster: rooms shared among processes over Redis; used by api, uses rooms and store.
     "cluster": {"rooms", "store", "codec", "config"},
+    # ladder: Play now, ranked results, the players' records; used by api, uses players.
+    "ladder": {"players", "cluster", "rooms", "store"},
     "api": {
         *("cluster", "rooms", "protocol", "store", "ai", "rules", "engine", "codec", "config"),
-        "players",
+        *("ladder", "players"),
     },
-    "players": set(),  # pure: profiles, Glicko-2, the Play now queue; used by api
+    "players": set(),  # pure: profiles, Glicko-2, the Play now queue; used by ladder and api
 }
 WIRING = {"app", "__main__", "__init__"}
 
@@ -184,3 +187,44 @@ def test_the_bench_check_sees_an_import(tmp_path: Path):
     probe = tmp_path / "probe.py"
     probe.write_text("import bench.load\nfrom bench import ai\nfrom .bench import x\n")
     assert bench_imports(probe) == ["bench.load", "bench"]
+
+
+API = SERVER / "api"
+# The bodies of requests and answers: pydantic models, the transport's too, with no route.
+BODIES = {"schemas.py", "player_schemas.py"}
+
+
+def third_party_imports(path: Path) -> set[str]:
+    """The top-level packages outside `server` a module imports (at run time or not)."""
+    found: set[str] = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.Import):
+            found.update(a.name.split(".")[0] for a in node.names)
+        elif isinstance(node, ast.ImportFrom) and not node.level and node.module:
+            found.add(node.module.split(".")[0])
+    return found
+
+
+@pytest.mark.parametrize(
+    "path", sorted(p for p in API.glob("*.py") if p.name != "__init__.py"), ids=lambda p: p.name
+)
+def test_every_api_module_is_transport(path: Path):
+    """Matchmaking, ratings and other services live below (`server.ladder`, ...): a module
+    of `server/api` handles HTTP or the WebSocket (FastAPI, Starlette), or is a module of
+    bodies (pydantic models only)."""
+    imported = third_party_imports(path)
+    if path.name in BODIES:
+        tree = ast.parse(path.read_text())
+        assert "pydantic" in imported
+        assert not [
+            n.name for n in tree.body if isinstance(n, ast.FunctionDef | ast.AsyncFunctionDef)
+        ]
+    else:
+        assert imported & {"fastapi", "starlette"}, f"{path.name} imports neither"
+
+
+def test_only_deps_reads_the_app_state():
+    """Routes name what they need (`server.api.deps` aliases) instead of reading
+    `app.state` in their bodies."""
+    readers = [p.name for p in API.glob("*.py") if "app.state" in p.read_text()]
+    assert readers == ["deps.py"]

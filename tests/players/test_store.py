@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from server.api.playerdata import RankedRoom, rate_in_store
+from server.ladder import RankedRoom, rate_in_store
 from server.players import KindRating, Rating, rate_match
 from server.store import Database, Repository
 from server.store.players import PlayerRows, RankedRecord, RatingRecord

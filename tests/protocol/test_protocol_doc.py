@@ -42,13 +42,15 @@ import pytest
 from fastapi.routing import APIRoute
 from pydantic import BaseModel, TypeAdapter, ValidationError
 
-from server.api.http import router as http_router
 from server.api.matches import router as matches_router
+from server.api.meta import router as meta_router
 from server.api.players import router as players_router
+from server.api.rooms import router as rooms_router
 from server.api.schemas import ErrorResponse
 from server.config import Settings
 from server.engine import TICK_HZ
 from server.protocol import AnyClientMessage, BadMessage, Limits, parse_client_message
+from server.protocol.limits import FRAMES_PER_MESSAGE
 from server.protocol.outbound import (
     AnyReplayMessage,
     AnyServerMessage,
@@ -218,7 +220,7 @@ def required_names(cls: Any, seen: set[Any]) -> dict[str, str]:
 def api_routes() -> list[APIRoute]:
     return [
         r
-        for router in (http_router, matches_router, players_router)
+        for router in (meta_router, rooms_router, matches_router, players_router)
         for r in router.routes
         if isinstance(r, APIRoute)
     ]
@@ -440,14 +442,14 @@ def test_stream_rates_in_the_doc_are_the_defaults():
     for welcome in welcomes:
         assert welcome["tick_hz"] == TICK_HZ
         assert welcome["frame_every"] == settings.frame_every
-        assert welcome["frames_per_message"] == settings.frames_per_message
+        assert welcome["frames_per_message"] == FRAMES_PER_MESSAGE
     details = [v["stream"] for _, v, what in validated_examples() if what == "MatchDetail"]
     assert details and all(
         s
         == {
             "tick_hz": TICK_HZ,
             "frame_every": settings.frame_every,
-            "frames_per_message": settings.frames_per_message,
+            "frames_per_message": FRAMES_PER_MESSAGE,
         }
         for s in details
     )

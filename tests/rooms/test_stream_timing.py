@@ -30,7 +30,7 @@ def test_a_joiner_is_shown_the_latest_frame_due():
 def test_the_last_frame_is_the_table_at_rest():
     result, plan = _plan()
     last = plan.last
-    assert last.tick == len(result.frames) and not last.droppable
+    assert last.tick == len(result.frames)
     rows = plan.frames.rows(last.frame)
     final = result.final
     assert sorted(r[0] for r in rows) == final.ids[final.on_table].tolist()

@@ -1,4 +1,5 @@
-"""Room requests that must run where the room is played: open, show, join, a hint.
+"""Forwarding to the owning process: room requests that must run where the room is played
+(open, show, join, a hint), and the path's room as routes see it (`RoomAt`).
 
 One process: they run here. Cluster mode: a new room goes to the least loaded live process,
 and showing or joining a room runs on its owner (the holder of its lease), called through
@@ -11,9 +12,10 @@ from __future__ import annotations
 
 import asyncio
 import logging
+from dataclasses import dataclass
 from typing import Any
 
-from fastapi import FastAPI, HTTPException
+from fastapi import HTTPException
 
 from server.cluster import Cluster, Unreachable, ws_url
 from server.config import Settings
@@ -24,6 +26,7 @@ from .hints import hint_for
 from .schemas import CreateRoom
 
 log = logging.getLogger(__name__)
+UNKNOWN_ROOM = {"code": "unknown_room", "message": "No such room."}
 MOVING = {"code": "room_moving", "message": "The room is moving to another server; try again."}
 UNAVAILABLE = {"code": "unavailable", "message": "Tables cannot be opened now; try again soon."}
 CLOSE_UNAVAILABLE = 1013  # try again later
@@ -137,13 +140,42 @@ async def room_owner(cluster: Cluster, room_id: str) -> str:
         raise HTTPException(503, MOVING) from None
     if known:
         raise HTTPException(503, MOVING)
-    raise HTTPException(404, {"code": "unknown_room", "message": "No such room."})
+    raise HTTPException(404, UNKNOWN_ROOM)
 
 
-def install(app: FastAPI, cluster: Cluster) -> None:
-    """Answer other processes' calls to open, show and join rooms here."""
-    registry: RoomRegistry = app.state.registry
-    settings: Settings = app.state.settings
+@dataclass(frozen=True)
+class RoomAt:
+    """The path's room, wherever it is played: a route first offers the request to the
+    room's owner (`at_owner`), and when that is this process works on `live()`."""
+
+    room_id: str
+    registry: RoomRegistry
+    cluster: Cluster | None
+
+    def here(self) -> LiveRoom | None:
+        return self.registry.get(self.room_id)
+
+    async def at_owner(
+        self, op: str, args: dict[str, Any], timeout: float | None = None
+    ) -> dict[str, Any] | None:
+        """Cluster mode, the room not played here: `op` run by its owner, and its answer
+        (404 `unknown_room` when no process plays it, 503 while it moves). None: the
+        request is for this process (the room is here, or there is one process)."""
+        if self.cluster is None or self.here() is not None:
+            return None
+        node = await room_owner(self.cluster, self.room_id)
+        return await forward(self.cluster, node, op, args, timeout)
+
+    def live(self) -> LiveRoom:
+        """The room played here, else 404 `unknown_room`."""
+        live = self.here()
+        if live is None:
+            raise HTTPException(404, UNKNOWN_ROOM)
+        return live
+
+
+def answer_calls(cluster: Cluster, registry: RoomRegistry, settings: Settings) -> None:
+    """Answer other processes' calls to open, show and join rooms here, and plan hints."""
 
     def local(room_id: str) -> LiveRoom:
         live = registry.get(room_id)

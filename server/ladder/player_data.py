@@ -1,4 +1,4 @@
-"""The players' records as the API needs them: the store's rows turned into
+"""The players' records as the ladder needs them: the store's rows turned into
 `server.players` values, and the rating of a ranked match computed inside the store's own
 transaction (read both ratings, rate, write both and the result, or nothing), so two
 results can never be rated from the same stale rating.

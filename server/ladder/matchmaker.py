@@ -1,10 +1,11 @@
-"""Play now on one process: the queue (`server.players.MatchPool`), the rooms it opens, and
+"""Play now in one process: the queue (`server.players.MatchPool`), the rooms it opens, and
 what each waiting player is told through the long-poll.
 
 Everything that changes the queue runs synchronously on the event loop (join, leave, a
 wave of pairing, opening the room and seating both players), so pairing is atomic: two
 players pressing Play now at once cannot both be paired with a third, nor one twice.
-Cluster mode (one Redis queue drained by one process at a time) is not built yet.
+Cluster mode has its own queue in Redis (`ClusterMatchmaker`), which opens the rooms of the
+pairs it drains with this one.
 """
 
 from __future__ import annotations
@@ -12,62 +13,24 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import logging
-from collections.abc import Callable
-from dataclasses import dataclass
-from typing import Any, Protocol
+from typing import Any
 
 from server.players import MatchPool, Pairing, Waiting, Window, nearest_level, seat_token
-from server.rooms import ActionError, LiveRoom, Room, RoomRegistry
+from server.rooms import ActionError, LiveRoom, RoomRegistry
 
-from .playerdata import PlayerData, RankedRoom
-from .ranked import RankedWatch
+from .player_data import RankedRoom
+from .playnow import ASSIGNMENT_KEPT, Assignment, PlayNow, matched, seat_alone, waiting
+from .results import RankedResults
 
 log = logging.getLogger(__name__)
 WAVE_EVERY = 1.0  # s between two waves of pairing with the widened windows
-ASSIGNMENT_KEPT = 600.0  # s a matched player can still read where to go
 
 
-class PlayNowQueue(Protocol):
-    """What the routes use: `Matchmaker` (one process) or `ClusterMatchmaker` (Redis)."""
-
-    registry: RoomRegistry
-
-    def now(self) -> float: ...
-    async def enqueue(self, entry: Waiting) -> None: ...
-    async def dequeue(self, player_id: str) -> None: ...
-    async def status(self, player_id: str) -> dict[str, Any]: ...
-    async def wait(self, player_id: str, timeout: float) -> None: ...
-    async def take_computer(self, player_id: str, key: str) -> tuple[Assignment, str]: ...
-    async def resume(self) -> int: ...
-    async def run(self) -> None: ...
-
-
-@dataclass(frozen=True)
-class Assignment:
-    """Where a matched player plays: their seat and its token, shown to them only."""
-
-    room_id: str
-    seat: int
-    token: str
-    game: str
-    opponent: str
-    ranked: bool
-    at: float  # monotonic time it was made
-
-
-class Matchmaker:
-    def __init__(
-        self,
-        registry: RoomRegistry,
-        data: PlayerData,
-        window: Window,
-        match_ids: Callable[[Room], int | None] | None = None,
-    ) -> None:
-        """`match_ids`: the history's id of a room's match (the recorder's), for the replay
-        link of a ranked result."""
+class Matchmaker(PlayNow):
+    def __init__(self, registry: RoomRegistry, results: RankedResults, window: Window) -> None:
         self.registry = registry
-        self.match_ids = match_ids
-        self.data = data
+        self.results = results
+        self.data = results.data
         self.pool = MatchPool(window)
         self.assignments: dict[str, Assignment] = {}
         self._waiters: dict[str, asyncio.Event] = {}
@@ -124,14 +87,14 @@ class Matchmaker:
 
     async def resume(self) -> int:
         """After the saved rooms are restored: watch the ranked ones again."""
-        return self.restore(await self.data.open_ranked())
+        return self.results.restore(await self.data.open_ranked())
 
     async def run(self) -> None:
         while True:
             await asyncio.sleep(WAVE_EVERY)
             self.wave()
 
-    # ---- the interface the routes use (`ClusterMatchmaker` has the same) ----------------
+    # ---- `PlayNow`: the interface the routes use -----------------------------------------
 
     def now(self) -> float:
         """The time a queue entry's `since` is read on."""
@@ -225,9 +188,8 @@ class Matchmaker:
             (pairing.first.player_id, pairing.second.player_id),
             (pairing.first.name, pairing.second.name),
         )
-        self.watch(live, ranked)
         wall = self.registry.clock.wall()
-        self.data.add_ranked(ranked, wall)
+        self.results.start(live, ranked, wall)
         for entry, seat, _ in seated:
             self.data.player_seated(entry.player_id, room.room_id, seat, wall)
         for _, seat, _ in seated:
@@ -238,67 +200,3 @@ class Matchmaker:
             )
             self._told.discard(entry.player_id)
             self._wake(entry.player_id)
-
-    def watch(self, live: LiveRoom, ranked: RankedRoom) -> None:
-        """Rate the room's first match when it ends (also for a room restored after a
-        restart)."""
-
-        def over(room: Room) -> None:
-            """Rated when won with at least one shot played; a match ended before any shot
-            (a no-show, a concession at the table) or abandoned closes unrated, as the
-            history marks it abandoned."""
-            assert room.match is not None
-            number = self.match_ids(room) if self.match_ids is not None else None
-            played = room.shots_played > 0 and not room.abandoned
-            winner = room.match.winner if played else None
-            self.data.rate_ranked(ranked, number, winner, self.registry.clock.wall())
-
-        live.observer = RankedWatch(live.observer, over)
-
-    def restore(self, open_ranked: list[RankedRoom]) -> int:
-        """After a restart: watch again the ranked rooms the registry brought back."""
-        watched = 0
-        for ranked in open_ranked:
-            live = self.registry.get(ranked.room_id)
-            if live is not None and not isinstance(live.observer, RankedWatch):
-                self.watch(live, ranked)
-                watched += 1
-        return watched
-
-
-def matched(a: Assignment) -> dict[str, Any]:
-    return {
-        "status": "matched",
-        "game": a.game,
-        "room": {
-            "room_id": a.room_id,
-            "seat": a.seat,
-            "token": a.token,
-            "url": f"/r/{a.room_id}",
-            "opponent": a.opponent,
-            "ranked": a.ranked,
-        },
-    }
-
-
-def waiting(entry: Waiting, now: float, window: Window, computer: str | None) -> dict[str, Any]:
-    waited = max(0.0, now - entry.since)
-    return {
-        "status": "waiting",
-        "game": entry.kind,
-        "rating": round(entry.rating, 2),
-        "waited": round(waited, 3),
-        "window": round(window.at(waited), 2),
-        "computer": computer,
-    }
-
-
-def seat_alone(
-    live: LiveRoom, player_id: str, name: str, key: str, data: PlayerData, now: float
-) -> Assignment:
-    """Seat the player (with their own token) in a room the computer plays in."""
-    room = live.room
-    seat, token = room.join(name, token=seat_token(key, room.room_id))
-    live.on_joined(seat)
-    data.player_seated(player_id, room.room_id, seat, live.clock.wall())
-    return Assignment(room.room_id, seat, token, room.game, room.name_of(1 - seat), False, now)

@@ -5,12 +5,15 @@ same room is a friendly game."""
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import TYPE_CHECKING
 
-from server.engine import BallSet, Shot
-from server.protocol import ShotPlan
 from server.rooms import Room
 from server.rooms.observer import RoomObserver
-from server.rules import Outcome
+
+if TYPE_CHECKING:  # the observer's signatures only
+    from server.engine import BallSet, Shot
+    from server.protocol import ShotPlan
+    from server.rules import Outcome
 
 
 class RankedWatch:

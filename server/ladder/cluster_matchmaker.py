@@ -13,7 +13,6 @@ from __future__ import annotations
 import asyncio
 import json
 import logging
-from collections.abc import Callable
 from dataclasses import asdict
 from typing import Any
 
@@ -21,10 +20,11 @@ from redis.asyncio import Redis
 
 from server.cluster import Cluster
 from server.players import MatchPool, Pairing, Waiting, Window, nearest_level
-from server.rooms import ActionError, LiveRoom, Room, RoomRegistry
+from server.rooms import ActionError, LiveRoom, RoomRegistry
 
-from .playerdata import PlayerData
-from .playnow import ASSIGNMENT_KEPT, Assignment, Matchmaker, matched, seat_alone, waiting
+from .matchmaker import Matchmaker
+from .playnow import ASSIGNMENT_KEPT, Assignment, PlayNow, matched, seat_alone, waiting
+from .results import RankedResults
 
 log = logging.getLogger(__name__)
 PREFIX = "pool:playnow:"
@@ -58,25 +58,21 @@ def assignment_key(player_id: str) -> str:
     return f"{PREFIX}seat:{player_id}"
 
 
-class ClusterMatchmaker:
-    """The routes' Play now interface (as `Matchmaker`) over Redis."""
+class ClusterMatchmaker(PlayNow):
+    """`PlayNow` over Redis: every process queues and reads here, one drains."""
 
     def __init__(
-        self,
-        registry: RoomRegistry,
-        data: PlayerData,
-        window: Window,
-        cluster: Cluster,
-        match_ids: Callable[[Room], int | None] | None = None,
+        self, registry: RoomRegistry, results: RankedResults, window: Window, cluster: Cluster
     ) -> None:
         self.registry = registry
-        self.data = data
+        self.results = results
+        self.data = results.data
         self.window = window
         self.cluster = cluster
         self.redis: Redis = cluster.redis
         self.node = cluster.node
         # Opens and watches the rooms of the pairs drained here (its own pool stays empty).
-        self.local = Matchmaker(registry, data, window, match_ids)
+        self.local = Matchmaker(registry, results, window)
         self._seen: set[str] = set()  # rooms of this process checked for being ranked
         self._take_pair = self.redis.register_script(TAKE_PAIR)
         self._release = self.redis.register_script(RELEASE)
@@ -216,7 +212,7 @@ class ClusterMatchmaker:
             return 0
         self._seen.update(new)
         self._seen.intersection_update(self.registry.rooms)
-        return self.local.restore(await self.data.open_ranked(new))
+        return self.results.restore(await self.data.open_ranked(new))
 
     async def run(self) -> None:
         while True:
