@@ -476,7 +476,10 @@ export function renderAway(state, now, graceAt) {
     .map((g) => {
       const name = playerName(state, g.seat) ?? `Player ${g.seat + 1}`;
       const left = countdown(g.remaining - (now - graceAt));
-      return `${name} left the table · ${left} to come back before forfeiting the frame`;
+      // Only a player who was here can have left (an older server sends no `left`).
+      return g.left === false
+        ? `Waiting for ${name} to come to the table · ${left} before forfeiting the frame`
+        : `${name} left the table · ${left} to come back before forfeiting the frame`;
     });
   const text = lines.join('\n');
   setText(el, text);

@@ -1,6 +1,7 @@
 """Through the real API: a Play now answer ends with its match (the lobby stays the lobby
 afterwards); a seat taken without a name is the profile's name, an old client's name still
-works; a refused name is one plain sentence."""
+works; a refused name is one plain sentence; only a player who was at the table has left
+it."""
 
 from __future__ import annotations
 
@@ -71,3 +72,29 @@ def test_other_refusals_keep_their_usual_answer(clocked_client):
     refused = clocked_client.post("/api/rooms", json={"game": "snooker"})
     assert refused.status_code == 422
     assert isinstance(refused.json()["detail"], list)
+
+
+def grace_where(ws, predicate, limit: int = 200) -> list[dict]:
+    """The first `grace` list (of a `state` or a `presence`) that satisfies `predicate`."""
+    for _ in range(limit):
+        message = ws.receive_json()
+        if "grace" in message and predicate(message["grace"]):
+            return message["grace"]
+    raise AssertionError("no such grace list")
+
+
+def test_only_a_player_who_was_at_the_table_has_left_it(clocked_client):
+    """Play now seats both at once: until Ben's page connects he is away but has not left;
+    once he was there and dropped, he has."""
+    ana, ben = Visitor(clocked_client), Visitor(clocked_client)
+    play_now(ana)
+    b = play_now(ben)["room"]
+    a = ana.call("GET", "/api/playnow").json()["room"]
+    with connect(clocked_client, a["room_id"], a["token"]) as wa:
+        first = receive_until(wa, "state")[-1]["grace"]
+        assert [(g["seat"], g["left"]) for g in first] == [(b["seat"], False)]
+        with connect(clocked_client, b["room_id"], b["token"]) as wb:
+            receive_until(wb, "state")
+            grace_where(wa, lambda g: g == [])
+        away = grace_where(wa, lambda g: g != [])
+        assert [(g["seat"], g["left"]) for g in away] == [(b["seat"], True)]
