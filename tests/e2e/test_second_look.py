@@ -10,7 +10,7 @@ import re
 import pytest
 from playwright.sync_api import Page, expect
 
-from .helpers import TABLE_PAGE, wait_ready
+from .helpers import TABLE_PAGE, aim_and_shoot, wait_for, wait_ready
 
 pytestmark = pytest.mark.browser
 
@@ -150,3 +150,39 @@ def test_names_are_refused_in_one_sentence_and_the_field_shows_its_limit(base_ur
     ana.keyboard.insert_text("x" * 300)
     expect(name).to_have_value("x" * 24)
     expect(ana.get_by_test_id("name-note")).to_contain_text("cut to 24: the paste had 300")
+
+
+def test_the_leaderboard_marks_and_explains_provisional_players(base_url, new_page):
+    """A rated Play now match (one shot, then a concession) puts both players on the
+    8-ball leaderboard, provisional: their ratings marked "?", the mark explained, and no
+    "Nobody ranked yet" over them."""
+    ana, ben = new_page(), new_page()
+    for page in (ana, ben):
+        page.goto(base_url + "/")
+        expect(page.get_by_test_id("play-now")).to_be_visible()
+        page.get_by_test_id("playnow-game").select_option("eight_ball")
+    ana.get_by_test_id("play-now").click()
+    expect(ana.get_by_test_id("playnow-status")).to_contain_text("Looking for")
+    ben.get_by_test_id("play-now").click()
+    for page in (ana, ben):
+        page.wait_for_url(TABLE_PAGE)
+        wait_ready(page, "aiming")
+    breaker = (
+        ana
+        if ana.evaluate("window.__pool.state.match.turn === window.__pool.state.me.seat")
+        else ben
+    )
+    foot = breaker.evaluate("window.__pool.state.table.foot_spot")
+    aim_and_shoot(breaker, (foot[0], foot[1]))
+    wait_for(breaker, "window.__pool.shotsSeen >= 1 && !window.__pool.playing")
+    wait_ready(breaker, "aiming")
+    concede_match(ana)
+    names = [profile_name(p) for p in (ana, ben)]
+    board = new_page()
+    board.goto(base_url + "/leaderboard")
+    provisional = board.get_by_test_id("leaderboard-provisional")
+    for name in names:
+        row = provisional.locator("tr", has_text=name)
+        expect(row.get_by_test_id("standing-rating")).to_have_text(re.compile(r"^\d+\?$"))
+    expect(board.get_by_test_id("provisional-why")).to_contain_text("marked ? is provisional")
+    expect(board.locator("#leaderboard")).not_to_contain_text("Nobody ranked yet")
