@@ -10,7 +10,7 @@ import re
 import pytest
 from playwright.sync_api import Page, expect
 
-from .helpers import TABLE_PAGE, aim_and_shoot, wait_for, wait_ready
+from .helpers import TABLE_PAGE, aim_and_shoot, table_point, wait_for, wait_ready
 
 pytestmark = pytest.mark.browser
 
@@ -186,3 +186,55 @@ def test_the_leaderboard_marks_and_explains_provisional_players(base_url, new_pa
         expect(row.get_by_test_id("standing-rating")).to_have_text(re.compile(r"^\d+\?$"))
     expect(board.get_by_test_id("provisional-why")).to_contain_text("marked ? is provisional")
     expect(board.locator("#leaderboard")).not_to_contain_text("Nobody ranked yet")
+
+
+def table_box(page: Page, margin: float) -> dict:
+    """The table's bed `margin` metres beyond the cushions (the pockets and the rails), in
+    page CSS pixels."""
+    size = page.evaluate("[window.__pool.state.table.length, window.__pool.state.table.width]")
+    corners = [
+        table_point(page, x, y)
+        for x in (-margin, size[0] + margin)
+        for y in (-margin, size[1] + margin)
+    ]
+    xs, ys = [c[0] for c in corners], [c[1] for c in corners]
+    return {"x": min(xs), "y": min(ys), "width": max(xs) - min(xs), "height": max(ys) - min(ys)}
+
+
+def overlaps(a: dict, b: dict) -> bool:
+    return (
+        a["x"] < b["x"] + b["width"]
+        and b["x"] < a["x"] + a["width"]
+        and a["y"] < b["y"] + b["height"]
+        and b["y"] < a["y"] + a["height"]
+    )
+
+
+@pytest.mark.parametrize("viewport", [(390, 844), (844, 390)], ids=["upright", "landscape"])
+def test_on_a_phone_nothing_covers_the_cloth_or_a_pocket(base_url, browser, viewport):
+    width, height = viewport
+    ctx = browser.new_context(
+        viewport={"width": width, "height": height}, is_mobile=True, has_touch=True
+    )
+    try:
+        page = ctx.new_page()
+        page.goto(base_url + "/")
+        page.get_by_test_id("play-computer").tap()
+        page.wait_for_url(TABLE_PAGE)
+        wait_ready(page, "aiming")
+        page.get_by_test_id("first-shot-hint-ok").tap()
+        expect(page.get_by_test_id("aim-state")).to_be_visible()  # "Ball in hand…"
+        bed = table_box(page, 0.1)  # the pockets' mouths and the rails round the cloth
+        shown = ["aim-state", "aim-left", "aim-right"]
+        for testid in shown:
+            box = page.get_by_test_id(testid).bounding_box()
+            assert box is not None and not overlaps(box, bed), testid
+            assert box["y"] + box["height"] <= height, testid
+        page.on("dialog", lambda d: d.accept())
+        page.get_by_test_id("concede").tap()
+        wait_ready(page, "over")
+        banner = page.get_by_test_id("winner")
+        expect(banner).to_be_visible()
+        assert not overlaps(banner.bounding_box(), bed)
+    finally:
+        ctx.close()
