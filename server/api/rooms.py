@@ -100,7 +100,7 @@ async def create_room(
         if node != cluster.node:
             args = {"body": body.model_dump(mode="json"), "client": client}
             return await owner.forward(cluster, node, "create", args)
-    created = await owner.open_room(registry, settings, cluster, body, client, base)
+    created = await owner.open_room(registry, cluster, body, client, base)
     if body.ranked:
         tables.add(created["room_id"], body.game, set(registry.rooms))
     return {**created, "ranked": body.ranked}

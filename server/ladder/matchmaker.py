@@ -203,8 +203,8 @@ class Matchmaker(PlayNow):
         self.results.start(live, ranked, wall)
         for entry, seat, _ in seated:
             self.data.player_seated(entry.player_id, room.room_id, seat, wall)
-        for _, seat, _ in seated:
-            live.on_joined(seat)
+        for _ in seated:
+            live.on_joined()
         for (entry, seat, token), (other, _, _) in zip(seated, reversed(seated), strict=True):
             self.assignments[entry.player_id] = Assignment(
                 room.room_id, seat, token, pairing.kind, other.name, True, now

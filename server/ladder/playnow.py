@@ -101,7 +101,7 @@ def seat_alone(
     """Seat the player (with their own token) in a room the computer plays in."""
     room = live.room
     seat, token = room.join(name, token=seat_token(key, room.room_id))
-    live.on_joined(seat)
+    live.on_joined()
     data.player_seated(player_id, room.room_id, seat, live.clock.wall())
     return Assignment(room.room_id, seat, token, room.game, room.name_of(1 - seat), False, now)
 

@@ -116,6 +116,7 @@ def every_core_busy() -> Iterator[None]:
             loop.wait()
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_the_computer_still_moves_when_other_work_starves_its_planner(
     tmp_path: Path, caplog: pytest.LogCaptureFixture
 ):
@@ -156,6 +157,7 @@ def play_hint(client: TestClient, room_id: str, token: str, hint: dict) -> dict:
     return message
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_a_hint_shows_the_strongest_plan_without_playing_it(client: TestClient):
     room_id = client.post("/api/rooms", json={"game": "practice", "listed": False}).json()[
         "room_id"

@@ -24,6 +24,7 @@ pytestmark = pytest.mark.timeout(120)
 TABLE = [2.54, 1.27, 0.028575, 0.114, 0.127]
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_writes_wait_out_a_12_second_lock_in_order(tmp_path: Path):
     db = Database(tmp_path / "pool.db")
     db.run(lambda repo: repo.start_match(1, "room", "practice", ["Ana"], 1))

@@ -34,14 +34,14 @@ class Recorder:
     def room_closed(self, room: Room) -> None:
         self.calls.append(("closed", room.room_id))
 
-    def room_restored(self, room: Room, match_id: int | None) -> None:
+    def room_restored(self, room: Room, match_id: int | None) -> None:  # noqa: ARG002 (the observer's signature)
         self.calls.append(("restored", room.room_id))
 
     def room_unreadable(self, room_id: str) -> None:
         self.calls.append(("unreadable", room_id))
 
 
-async def _never(text: str) -> None:
+async def _never(_text: str) -> None:
     raise AssertionError("nothing is sent in these tests")
 
 
@@ -105,7 +105,7 @@ def test_a_room_someone_joined_lives_for_the_idle_ttl_from_its_last_use(clock) -
     live = registry.create("eight_ball")
     live.room.join("Ana")
     clock.advance(30.0)
-    live.on_joined(0)  # joined 30 s after it opened: the idle clock starts again
+    live.on_joined()  # joined 30 s after it opened: the idle clock starts again
     clock.advance(SETTINGS.waiting_ttl + 1)
     assert registry.sweep() == []  # past the waiting ttl, but someone joined
     clock.advance(SETTINGS.idle_ttl - SETTINGS.waiting_ttl - 1)
@@ -118,7 +118,7 @@ def test_a_room_with_a_member_never_expires_and_idles_from_when_they_left(clock)
     registry, _ = registry_with(clock, 1)
     live = registry.create("practice")
     seat, _ = live.room.join("Ana")
-    live.on_joined(seat)
+    live.on_joined()
     conn = member(seat)
     live.attach(conn)
     clock.advance(10 * SETTINGS.idle_ttl)
