@@ -137,7 +137,7 @@ def test_a_practice_table_closes_soon_after_its_player_left(clock) -> None:
     registry, _ = registry_with(clock, 1, settings=settings)
     live = registry.create("practice", owner="1.2.3.4")
     seat, _ = live.room.join("Ana")
-    live.on_joined(seat)
+    live.on_joined()
     conn = member(seat)
     live.attach(conn)
     with pytest.raises(ActionError):
