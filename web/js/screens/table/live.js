@@ -461,7 +461,8 @@ export class LiveTable {
     this.coach.show(sit.myTurn && aim.mode !== 'placing');
     this.hint.offer(sit.myTurn && state.room?.game === 'practice');
     const shoot = $('hint-shoot');
-    const tried = this.triedPower !== null && sit.myTurn && aim.mode === 'idle';
+    const tried = this.triedPower !== null && this.hint.plan !== null && sit.myTurn
+      && aim.mode === 'idle';
     setHidden(shoot, !tried);
     if (tried) setText(shoot, `Shoot · ${Math.round(/** @type {number} */ (this.triedPower) * 100)} %`);
     const banner = $('frame-banner');
