@@ -81,9 +81,13 @@ class RoomDetail(RoomSummary):
 
 
 class JoinRoom(Strict):
-    name: Annotated[
-        str, Field(min_length=1, max_length=MAX_NAME, description="1-24 printable characters")
-    ]
+    # Left out: the player's profile name (their cookie's), the one name used everywhere.
+    name: (
+        Annotated[
+            str, Field(min_length=1, max_length=MAX_NAME, description="1-24 printable characters")
+        ]
+        | None
+    ) = None
     ranked: bool = Field(False, description="agree that a ranked table changes your rating")
 
 

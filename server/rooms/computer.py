@@ -106,6 +106,22 @@ def _stop(pool: ProcessPoolExecutor) -> None:
     pool.shutdown(wait=True, cancel_futures=True)
 
 
+def _ready() -> None:
+    """A planner's first task: nothing beyond its initializer (`_start_worker`)."""
+
+
+def warm_planners(workers: int) -> None:
+    """Start the planner processes now rather than at the first plan: spawning one and
+    loading the compiled kernels (numba's cache) takes seconds, which the first "Show me a
+    shot" of a fresh server (or the computer's first turn) would otherwise wait for.
+    `python -m server` calls it at start-up; tests leave the planners to start on demand."""
+    if workers <= 0 or _stopped:
+        return
+    pool = _pool(workers)
+    for _ in range(workers):
+        pool.submit(_ready)
+
+
 def open_planners() -> None:
     """A server of this process starts (its rooms may use the shared planners)."""
     global _servers, _stopped

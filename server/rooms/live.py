@@ -182,6 +182,8 @@ class LiveRoom:
         if self.members:
             return False
         ttl = self.settings.idle_ttl if self.ever_joined else self.settings.waiting_ttl
+        if self.ever_joined and self.room.practice:
+            ttl = min(ttl, self.settings.practice_ttl)  # its player left: nobody else plays it
         return now - self.last_activity > ttl
 
     def resume(self, pending: tuple[int, Shot] | None = None) -> None:
