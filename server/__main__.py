@@ -18,6 +18,7 @@ import uvicorn
 from server import logs
 from server.app import create_app
 from server.config import Settings, SettingsError
+from server.rooms.computer import warm_planners
 from server.rooms.prepare import warm_up
 from server.uvicorn_http import HttpProtocol
 
@@ -65,6 +66,7 @@ def main(argv: list[str] | None = None) -> None:
     )
     logs.hold_repeats()  # an outage's error once a minute with a count, not once a second
     warm_up(settings.frame_every)
+    warm_planners(settings.computer_workers)  # the first hint need not wait for them
     # `kill -USR1 <pid>` prints every thread's stack to stderr: what a stuck process is doing.
     faulthandler.register(signal.SIGUSR1, all_threads=True)
     # Everything loaded so far (numba, numpy, pydantic, the app) lives as long as the

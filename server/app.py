@@ -9,14 +9,15 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from fastapi import FastAPI, HTTPException
+from fastapi.exceptions import RequestValidationError
 from fastapi.responses import FileResponse
 from fastapi.staticfiles import StaticFiles
 
 from server.api.body_limit import BodyLimit
 from server.api.headers import SecurityHeaders
-from server.api.inputs import install as install_inputs
 from server.api.matches import router as matches_router
 from server.api.meta import router as meta_router
+from server.api.name_errors import validation_handler
 from server.api.owner import answer_calls
 from server.api.players import router as players_router
 from server.api.quotas import ClientQuotas
@@ -83,7 +84,6 @@ def create_app(
     )
     app.add_middleware(BodyLimit, limit=settings.max_body_bytes)
     app.add_middleware(SecurityHeaders, connect=page_sockets(settings, cluster))
-    install_inputs(app)
     app.state.settings = settings
     app.state.registry = registry
     app.state.quotas = ClientQuotas(settings)
@@ -96,6 +96,7 @@ def create_app(
         answer_calls(cluster, registry, settings)
     for router in (meta_router, rooms_router, matches_router, ws_router, players_router):
         app.include_router(router)
+    app.add_exception_handler(RequestValidationError, validation_handler)
     _serve_web(app, settings.web_dir)
     return app
 

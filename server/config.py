@@ -72,6 +72,9 @@ class Settings(BaseSettings):
     grace: Seconds = 60.0  # a dropped player keeps the seat this long
     idle_ttl: PositiveSeconds = 30 * 60.0  # a room nobody is connected to expires after this
     waiting_ttl: PositiveSeconds = 3 * 60.0  # ... or after this if nobody ever joined
+    # A practice table is its one player's: once they left (nobody connected), it closes
+    # after this (a reload is back well within it), no longer listed nor counted.
+    practice_ttl: PositiveSeconds = 60.0
     sweep_interval: PositiveSeconds = 30.0
     max_rooms: Annotated[int, Field(ge=1, le=1_000_000)] = 2000
     # Per client (address): open rooms at once, and room creations and seat takings in a

@@ -49,6 +49,7 @@ def test_the_sign_test_is_the_two_sided_binomial_tail() -> None:
     assert sign_test(25, 12) == pytest.approx(0.04703, abs=1e-5)
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_a_saved_run_replays_seed_for_seed_and_the_report_counts_differences(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
@@ -357,6 +358,7 @@ def test_the_leaves_fit_finds_the_weights_the_outcomes_came_from() -> None:
     assert np.allclose(logistic_fit(x, y), truth, atol=0.15)
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_the_leaves_benchmark_counts_each_table_the_runout_kept(
     capsys: pytest.CaptureFixture[str],
 ) -> None:

@@ -15,7 +15,7 @@ from typing import Protocol
 
 import numpy as np
 
-from server.engine import CUE, BallSet, Shot, Table
+from server.engine import CUE, BallSet, Shot, Table, rack_slots
 from server.rules import BEHIND_HEAD_STRING, Game
 from server.rules.placement import can_place
 from server.rules.position import Position
@@ -52,6 +52,20 @@ class BreakStroke:
 # that most often keeps it (whoever plays next may push out, so the pot to follow counts
 # less).
 BREAKS = {"eight_ball": BreakStroke(0.35, 10.0), "nine_ball": BreakStroke(0.35, 12.0)}
+
+
+# A ball this near a rack slot has not moved since the rack (its seeded jitter is 0.025 mm).
+RACKED_WITHIN = 0.5e-3  # m
+
+
+def still_racked(rules: GameRules, balls: BallSet, table: Table) -> bool:
+    """Every object ball still on its rack slot: the table waits for a break, even where
+    the rules have none of their own (practice's fresh rack)."""
+    slots = rack_slots(rules.rack, table)
+    on = [balls.position_of(b) for b in balls.on_table_ids() if b != CUE]
+    if len(on) != len(slots):
+        return False
+    return all(any(math.dist(slot, xy) <= RACKED_WITHIN for xy in on) for slot in slots)
 
 
 def break_spot(table: Table, offset: float) -> tuple[float, float]:
@@ -162,7 +176,10 @@ class Bot:
         rng = np.random.default_rng([self.seed & 0xFFFFFFFF, digest, seat, level_index])
         noise = rng.standard_normal((self.level.samples, 4))
         confirm = rng.standard_normal((self.level.confirm_samples, 4))
-        return Search(game.table, game.rules, game.position(), seat, self.level, noise, confirm)
+        pos = game.position()
+        if not pos.breaking and still_racked(game.rules, game.balls, game.table):
+            pos = replace(pos, breaking=True)  # a practice rack: the break is the shot
+        return Search(game.table, game.rules, pos, seat, self.level, noise, confirm)
 
     def _turn(self, cand: Candidate, place: tuple[float, float] | None, push: bool = False) -> Turn:
         kind, target, pocket = cand.kind, cand.target, cand.pocket

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from typing import Annotated, Any
 
-from fastapi import FastAPI, Path, Request
+from fastapi import Path, Request
 from fastapi.encoders import jsonable_encoder
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse
@@ -88,7 +88,3 @@ async def validation_error(request: Request, exc: Exception) -> JSONResponse:  #
     errors = exc.errors() if isinstance(exc, RequestValidationError) else []
     detail = json_safe(jsonable_encoder(json_safe(errors)))  # again: `ctx` may hold objects
     return JSONResponse(status_code=422, content={"detail": detail})
-
-
-def install(app: FastAPI) -> None:
-    app.add_exception_handler(RequestValidationError, validation_error)

@@ -41,7 +41,6 @@ def base_url(settings: Settings, cluster: Cluster | None, request_base: str) -> 
 
 async def open_room(
     registry: RoomRegistry,
-    settings: Settings,
     cluster: Cluster | None,
     body: CreateRoom,
     client: str,
@@ -104,7 +103,7 @@ def join(live: LiveRoom, name: str, base: str, key: str | None = None) -> dict[s
         except ActionError as exc:
             code = 409 if exc.code == "room_full" else 422
             raise HTTPException(code, {"code": exc.code, "message": exc.message}) from None
-        live.on_joined(seat)
+        live.on_joined()
     return {
         "room_id": room_id,
         "seat": seat,
@@ -193,7 +192,7 @@ def answer_calls(cluster: Cluster, registry: RoomRegistry, settings: Settings) -
     async def create(args: dict[str, Any]) -> tuple[int, dict[str, Any]]:
         body = CreateRoom.model_validate(args["body"])
         return await answer(
-            lambda: open_room(registry, settings, cluster, body, args["client"], cluster.url), 201
+            lambda: open_room(registry, cluster, body, args["client"], cluster.url), 201
         )
 
     async def show_here(args: dict[str, Any]) -> tuple[int, dict[str, Any]]:

@@ -40,6 +40,7 @@ from .schemas import (
 
 router = APIRouter(tags=["rooms"])
 MAX_PAGE = 100
+NO_PROFILE_NAME = "Give a name to play under: this browser has no profile yet."
 _ERRORS: dict[int | str, dict[str, Any]] = {
     404: {"model": ErrorResponse},
     409: {"model": ErrorResponse},
@@ -100,7 +101,7 @@ async def create_room(
         if node != cluster.node:
             args = {"body": body.model_dump(mode="json"), "client": client}
             return await owner.forward(cluster, node, "create", args)
-    created = await owner.open_room(registry, settings, cluster, body, client, base)
+    created = await owner.open_room(registry, cluster, body, client, base)
     if body.ranked:
         tables.add(created["room_id"], body.game, set(registry.rooms))
     return {**created, "ranked": body.ranked}
@@ -162,11 +163,13 @@ async def join_room(
     (at `ws_url`). A player with a profile (its cookie) sitting here already gets the same
     seat and token back. A ranked table needs `ranked: true` (the player's agreement) and a
     profile, else 409 `ranked_needs_agreement` and nobody is seated. 429: this client took
-    too many seats within the rate window."""
+    too many seats within the rate window. Without `name` the player sits under their
+    profile's name (422 `bad_name` without a profile)."""
     quotas.enforce("join", client)
     key = None if secret is None else seat_key(secret)  # a player sits with their own token
     room_id = room.room_id
-    joined = await room.at_owner("join", {"room_id": room_id, "name": body.name, "key": key})
+    name = body.name if body.name is not None else await profile_name(secret, data)
+    joined = await room.at_owner("join", {"room_id": room_id, "name": name, "key": key})
     if joined is not None:
         remember_seat(data, secret, room_id, joined["seat"], registry.clock.wall())
         return joined
@@ -176,11 +179,19 @@ async def join_room(
         if agreed is None:  # no agreement (or no profile): nobody is seated
             raise HTTPException(409, NEEDS_AGREEMENT)
     live = room.live()  # as it is after the wait
-    joined = owner.join(live, body.name, base, key)
+    joined = owner.join(live, name, base, key)
     if agreed is not None:
         tables.seated(live, joined["seat"], agreed)
     remember_seat(data, secret, room_id, joined["seat"], registry.clock.wall())
     return joined
+
+
+async def profile_name(secret: str | None, data: Players) -> str:
+    """The name of the request's profile, for a join that gives none."""
+    player = await asking_player(secret, data)
+    if player is None:
+        raise HTTPException(422, {"code": "bad_name", "message": NO_PROFILE_NAME})
+    return player.name
 
 
 @router.post(

@@ -78,7 +78,8 @@ class RoomDetail(RoomSummary):
 
 
 class JoinRoom(StrictBody):
-    name: Name
+    # Left out: the player's profile name (their cookie's), the one name used everywhere.
+    name: Name | None = None
     ranked: bool = Field(False, description="agree that a ranked table changes your rating")
 
 

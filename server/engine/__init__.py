@@ -1,6 +1,8 @@
 """Pure pool physics: table geometry, balls, racks, shots and the fixed-tick event engine.
 
 No I/O, no asyncio: the server, the rules, the tests and the benchmarks all drive it alone.
+A shot can be traced for drawing (`ShotInMotion.run(trace=...)`, `simulate_traced`: per
+ball, the knots of its exact motion) in the same compiled call that simulates it.
 """
 
 from .balls import CUE, BallSet, MotionState
@@ -15,10 +17,12 @@ from .simulate import (
     run_to_rest,
     settle,
     simulate,
+    simulate_traced,
     step,
     strike,
 )
 from .table import BALL_MASS, BALL_RADIUS, Cushion, Pocket, Table
+from .tracing import Tolerance, Trace
 from .version import ENGINE_VERSION, PHYSICS_REVISION, engine_version
 
 __all__ = [
@@ -46,12 +50,15 @@ __all__ = [
     "ShotInMotion",
     "ShotResult",
     "Table",
+    "Tolerance",
+    "Trace",
     "engine_version",
     "rack",
     "rack_slots",
     "run_to_rest",
     "settle",
     "simulate",
+    "simulate_traced",
     "step",
     "strike",
 ]

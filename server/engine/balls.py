@@ -174,7 +174,7 @@ class BallSet:
         kernel that numbers a shot's frames: a table at rest, a re-spotted ball and a
         stored table all show the cel their roll gives."""
         out = np.empty(len(self), dtype=np.int64)
-        cels_of(self.phases, self.states, out, params.array())
+        cels_of(self.phases, out, params.array())
         return out
 
     def position_of(self, ball_id: int) -> tuple[float, float]:

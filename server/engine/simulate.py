@@ -1,9 +1,13 @@
 """The engine's two doors: `simulate` runs a whole shot to rest, `step` advances a live table
 by one tick. Both trust their input (the room validates a player's shot first) and are
 deterministic: the same table, balls and shot give the same result, bit for bit.
+`ShotInMotion.run(trace=...)` (and `simulate_traced`) also trace the shot for drawing, in
+the same compiled call.
 """
 
 from __future__ import annotations
+
+from typing import Any
 
 import numpy as np
 
@@ -12,9 +16,11 @@ from .params import DEFAULT_PARAMS, PhysicsParams
 from .physics.constants import POCKETED
 from .physics.motion import drop_residual_spin, strike_ball
 from .physics.tick import empty_events, run_tick, run_to_rest_kernel, settle_kernel
+from .physics.trace import traced_run_kernel
 from .results import Event, EventKind, FrameSequence, Settled, ShotResult, events_from
 from .shot import Shot
 from .table import Table
+from .tracing import Tolerance, Trace
 
 TICK_HZ = 120  # ticks per second: fixed, so clients are told it rather than a setting
 DEFAULT_TICK = 1.0 / TICK_HZ
@@ -25,7 +31,7 @@ _EVENT_CAPACITY = 16384
 class _Geometry:
     """The table as the arrays the kernels take, built once per Table."""
 
-    __slots__ = ("cushions", "jaws", "pockets", "centers", "length", "width")
+    __slots__ = ("centers", "cushions", "jaws", "length", "pockets", "width")
 
     def __init__(self, table: Table) -> None:
         self.cushions = table.cushion_array()
@@ -128,11 +134,11 @@ def _run_kernel(
     tick: float,
     params: np.ndarray,
     event_capacity: int = _EVENT_CAPACITY,
-) -> tuple:
+) -> tuple[Any, ...]:
     """(frame positions, cels, on-table flags, event rows, stalled ticks, ticks); `s` is
     advanced in place to rest. The event array starts at `event_capacity` rows and grows
     as needed. (`settle_kernel` runs a shot without frames.)"""
-    return run_to_rest_kernel(
+    raw: tuple[Any, ...] = run_to_rest_kernel(
         s.positions,
         s.velocities,
         s.spins,
@@ -151,6 +157,7 @@ def _run_kernel(
         event_capacity,
         True,
     )
+    return raw
 
 
 class ShotInMotion:
@@ -158,7 +165,9 @@ class ShotInMotion:
     holding the GIL its event loop needs: the strike (here), `run()` (the whole tick loop,
     one compiled call that releases the GIL) and `result()` (Python objects again).
 
-    `simulate` is the three in a row; splitting them changes nothing in the result."""
+    `simulate` is the three in a row; splitting them changes nothing in the result.
+    `run(trace=tolerance)` also traces the shot (`trace`) in the same compiled call: the
+    same ticks, so `result()` is the same, bit for bit."""
 
     def __init__(
         self,
@@ -173,11 +182,32 @@ class ShotInMotion:
         self._events = [strike(self.state, shot, params)]
         self._geometry = _geometry(table)
         self._params = _params_array(params)
-        self._raw: tuple | None = None
+        self._raw: tuple[Any, ...] | None = None
+        self._trace: Trace | None = None
 
-    def run(self) -> None:
-        """Run every tick until the balls are at rest (the guard: MAX_SHOT_SECONDS)."""
-        self._raw = _run_kernel(self._geometry, self.state, self.tick, self._params)
+    def run(self, trace: Tolerance | None = None) -> None:
+        """Run every tick until the balls are at rest (the guard: MAX_SHOT_SECONDS); with a
+        `trace` tolerance, trace the shot too (`self.trace`)."""
+        if trace is None:
+            self._raw = _run_kernel(self._geometry, self.state, self.tick, self._params)
+            return
+        s, geo = self.state, self._geometry
+        ids = s.ids.copy()
+        times, positions, phases, on_table, knots, offsets, ticks, self._raw = traced_run_kernel(
+            s.positions, s.velocities, s.spins, s.states, s.phases, s.pockets, geo.cushions,
+            geo.jaws, geo.pockets, geo.centers, geo.length, geo.width, self._params, self.tick,
+            int(MAX_SHOT_SECONDS / self.tick), float(trace.position), float(trace.phase),
+        )  # fmt: skip
+        self._trace = Trace(
+            ids, times, positions, phases, on_table, knots, offsets, s.pockets.copy(), ticks
+        )
+
+    @property
+    def trace(self) -> Trace:
+        """The shot's tracks (after `run(trace=...)`)."""
+        if self._trace is None:
+            raise RuntimeError("run(trace=...) the shot first")
+        return self._trace
 
     def result(self) -> ShotResult:
         if self._raw is None:
@@ -205,6 +235,21 @@ def simulate(
     motion = ShotInMotion(table, balls, shot, tick, params)
     motion.run()
     return motion.result()
+
+
+def simulate_traced(
+    table: Table,
+    balls: BallSet,
+    shot: Shot,
+    tolerance: Tolerance,
+    tick: float = DEFAULT_TICK,
+    params: PhysicsParams = DEFAULT_PARAMS,
+) -> tuple[ShotResult, Trace]:
+    """`simulate` and the shot's trace (within `tolerance`) from one pass over its ticks:
+    the result is `simulate`'s, bit for bit. `balls` is not modified."""
+    motion = ShotInMotion(table, balls, shot, tick, params)
+    motion.run(trace=tolerance)
+    return motion.result(), motion.trace
 
 
 def settle(

@@ -153,10 +153,6 @@ class Table:
         return (3 * self.length / 4, self.width / 2)
 
     @property
-    def center_spot(self) -> tuple[float, float]:
-        return (self.length / 2, self.width / 2)
-
-    @property
     def jaws(self) -> tuple[tuple[float, float], ...]:
         """Every jaw point (the ends of the cushions)."""
         return tuple(p for c in self.cushions for p in (c.start, c.end))

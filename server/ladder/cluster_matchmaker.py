@@ -23,7 +23,15 @@ from server.players import MatchPool, Pairing, Waiting, Window, nearest_level
 from server.rooms import ActionError, LiveRoom, RoomRegistry
 
 from .matchmaker import Matchmaker
-from .playnow import ASSIGNMENT_KEPT, Assignment, PlayNow, matched, seat_alone, waiting
+from .playnow import (
+    ASSIGNMENT_KEPT,
+    Assignment,
+    PlayNow,
+    match_over,
+    matched,
+    seat_alone,
+    waiting,
+)
 from .results import RankedResults
 
 log = logging.getLogger(__name__)
@@ -100,7 +108,10 @@ class ClusterMatchmaker(PlayNow):
     async def status(self, player_id: str) -> dict[str, Any]:
         raw = await self.redis.get(assignment_key(player_id))
         if raw is not None:
-            return matched(Assignment(**json.loads(raw)))
+            assignment = Assignment(**json.loads(raw))
+            if not match_over(self.registry, assignment, gone_is_over=False):
+                return matched(assignment)
+            await self.redis.delete(assignment_key(player_id))
         entry = await self._entry(player_id, pairing=True)
         if entry is None:
             return {"status": "idle"}

@@ -19,7 +19,15 @@ from server.players import MatchPool, Pairing, Waiting, Window, nearest_level, s
 from server.rooms import ActionError, LiveRoom, RoomRegistry
 
 from .player_data import RankedRoom
-from .playnow import ASSIGNMENT_KEPT, Assignment, PlayNow, matched, seat_alone, waiting
+from .playnow import (
+    ASSIGNMENT_KEPT,
+    Assignment,
+    PlayNow,
+    match_over,
+    matched,
+    seat_alone,
+    waiting,
+)
 from .results import RankedResults
 
 log = logging.getLogger(__name__)
@@ -109,6 +117,9 @@ class Matchmaker(PlayNow):
     async def status(self, player_id: str) -> dict[str, Any]:
         """What `GET /api/playnow` answers (`room` without its `url`)."""
         assignment = self.assignments.get(player_id)
+        if assignment is not None and match_over(self.registry, assignment, gone_is_over=True):
+            del self.assignments[player_id]
+            assignment = None
         if assignment is not None:
             return matched(assignment)
         entry = self.pool.get(player_id)
@@ -192,8 +203,8 @@ class Matchmaker(PlayNow):
         self.results.start(live, ranked, wall)
         for entry, seat, _ in seated:
             self.data.player_seated(entry.player_id, room.room_id, seat, wall)
-        for _, seat, _ in seated:
-            live.on_joined(seat)
+        for _ in seated:
+            live.on_joined()
         for (entry, seat, token), (other, _, _) in zip(seated, reversed(seated), strict=True):
             self.assignments[entry.player_id] = Assignment(
                 room.room_id, seat, token, pairing.kind, other.name, True, now

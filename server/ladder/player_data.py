@@ -6,7 +6,7 @@ results can never be rated from the same stale rating.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from server.players import KindRating, Player, Rating, rate_match
 from server.store import Database
@@ -145,37 +145,27 @@ def rate_in_store(
         found = rows.ranked(room.room_id)
         if found is None or found.finished_at is not None:
             return False
-        if winner is None:
-            rows.finish_ranked(
-                RankedRecord(
-                    room.room_id,
-                    room.kind,
-                    room.players,
-                    room.names,
-                    found.started_at,
-                    match_id,
-                    None,
-                    None,
-                    None,
-                    at,
-                )
-            )
-            return True
-        a, b = (_stored_rating(rows, p, room.kind) for p in room.players)
-        new_a, new_b = rate_match(a, b, winner == 0, at)
-        result = RankedRecord(
+        unrated = RankedRecord(
             room.room_id,
             room.kind,
             room.players,
             room.names,
             found.started_at,
             match_id,
-            winner,
-            [_triple(a.at(at)), _triple(b.at(at))],
-            [_triple(new_a.rating), _triple(new_b.rating)],
-            at,
+            finished_at=at,
         )
-        rows.finish_ranked(result)
+        if winner is None:
+            rows.finish_ranked(unrated)
+            return True
+        a, b = (_stored_rating(rows, p, room.kind) for p in room.players)
+        new_a, new_b = rate_match(a, b, winner == 0, at)
+        rated = replace(
+            unrated,
+            winner=winner,
+            before=[_triple(a.at(at)), _triple(b.at(at))],
+            after=[_triple(new_a.rating), _triple(new_b.rating)],
+        )
+        rows.finish_ranked(rated)
         rows.save_rating(_record(new_a))
         rows.save_rating(_record(new_b))
     return True

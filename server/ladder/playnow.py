@@ -9,11 +9,11 @@ from dataclasses import dataclass
 from typing import Any
 
 from server.players import Waiting, Window, seat_token
-from server.rooms import LiveRoom
+from server.rooms import LiveRoom, RoomRegistry
 
 from .player_data import PlayerData
 
-ASSIGNMENT_KEPT = 600.0  # s a matched player can still read where to go
+ASSIGNMENT_KEPT = 600.0  # s a matched player can still read where to go (at most)
 
 
 @dataclass(frozen=True)
@@ -101,6 +101,16 @@ def seat_alone(
     """Seat the player (with their own token) in a room the computer plays in."""
     room = live.room
     seat, token = room.join(name, token=seat_token(key, room.room_id))
-    live.on_joined(seat)
+    live.on_joined()
     data.player_seated(player_id, room.room_id, seat, live.clock.wall())
     return Assignment(room.room_id, seat, token, room.game, room.name_of(1 - seat), False, now)
+
+
+def match_over(registry: RoomRegistry, assignment: Assignment, gone_is_over: bool) -> bool:
+    """The assignment's match is over, or its room closed (`gone_is_over`: one process,
+    where a room not in the registry is closed; in a cluster it may be another process's):
+    a "matched" answer never outlives its match, so the lobby stays the lobby afterwards."""
+    live = registry.get(assignment.room_id)
+    if live is None:
+        return gone_is_over
+    return live.room.status == "finished"

@@ -1,5 +1,5 @@
 """The wire protocol, shared by the live rooms and the HTTP API: every message model (in
-and out), the one encoder, and a shot's motion: traced, packed and planned.
+and out), the one encoder, and a shot's motion: packed (the engine traces it) and planned.
 
 It sits below `rooms` and `api` and imports only the engine (for its limits and results).
 """
@@ -7,7 +7,7 @@ It sits below `rooms` and `api` and imports only the engine (for its limits and 
 from .inbound import AnyClientMessage, BadMessage, parse_client_message
 from .limits import LIMITS, PROTOCOL_VERSION, Limits, StreamRates
 from .motion import Tracks, run_traced, trace
-from .plan import BallRow, ShotPlan, StreamFrames, Timed, frame_rows, message_text, plan_shot
+from .plan import BallRow, ShotPlan, StreamFrames, Timed, frame_rows, plan_shot
 
 __all__ = [
     "LIMITS",
@@ -22,7 +22,6 @@ __all__ = [
     "Timed",
     "Tracks",
     "frame_rows",
-    "message_text",
     "parse_client_message",
     "plan_shot",
     "run_traced",

@@ -13,7 +13,9 @@ from typing import Annotated, Literal, get_args
 
 from pydantic import BaseModel, ConfigDict, Field, TypeAdapter, ValidationError, model_validator
 
-from .limits import MAX_ANGLE, MAX_CHAT, MAX_SPEED, MAX_TIP
+from server.engine import MAX_SPEED, MAX_TIP
+
+from .limits import MAX_ANGLE, MAX_CHAT
 
 TipComponent = Annotated[float, Field(ge=-MAX_TIP, le=MAX_TIP)]
 Tip = tuple[TipComponent, TipComponent]

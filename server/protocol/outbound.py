@@ -37,10 +37,13 @@ class PlayerInfo(ServerMessage):
 
 
 class GraceInfo(ServerMessage):
-    """A dropped player's seat is kept this many more seconds."""
+    """An absent player's seat is kept this many more seconds. `left`: they had been at
+    the table and dropped; false while a player seated for them (Play now) has not yet
+    arrived, who has not left anything."""
 
     seat: int
     remaining: float
+    left: bool = True
 
 
 class ClockInfo(ServerMessage):

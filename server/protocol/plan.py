@@ -1,10 +1,10 @@
 """What a room sends for one shot (pure, no I/O): the binary `motion` message.
 
 The whole shot is simulated before anyone sees it, so its motion goes out at once, at the
-strike: every ball's exact track (`protocol.motion`) and its sounds. Clients play it on
-their own clock. The room keeps the shot's frames every `frame_every` ticks (integer
-millimetres) only for the `state` of a member who joins while the balls roll. `rest`
-events make no sound and are not sent.
+strike: every ball's exact track (traced by the engine, packed by `protocol.motion`) and
+its sounds. Clients play it on their own clock. The room keeps the shot's frames every
+`frame_every` ticks (integer millimetres) only for the `state` of a member who joins while
+the balls roll. `rest` events make no sound and are not sent.
 """
 
 from __future__ import annotations
@@ -28,14 +28,6 @@ SOUND_GAP = 0.05  # s: the same contact again within this is one sound
 CELS = 16  # sprite cels per turn
 
 BallRow = tuple[int, int, int, int]  # id, x_mm, y_mm, cel
-
-
-def message_text(kind: str, seq: int, body: str) -> str:
-    """A message from its pre-encoded `body` (JSON without `type` and `seq`): string
-    formatting only, so a room adds the sequence number without encoding again."""
-    if len(body) > 2:
-        return f'{{"type":"{kind}","seq":{seq},{body[1:]}'
-    return f'{{"type":"{kind}","seq":{seq}}}'
 
 
 class Timed(NamedTuple):
@@ -163,7 +155,7 @@ def _sounds(events: list[Event], tick: float) -> list[tuple[int, Event]]:
     repeats within SOUND_GAP of its last sound is the same sustained touch (a ball pressed by
     its spin against another collides again every few microseconds) and is not sent again;
     at most MAX_SOUNDS_PER_TICK a tick, the loudest (strikes and pockets always)."""
-    last: dict[tuple, float] = {}
+    last: dict[tuple[str, tuple[int, ...], int], float] = {}
     by_tick: dict[int, list[Event]] = {}
     for event in events:
         if event.kind not in SOUND_KINDS:

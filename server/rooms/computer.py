@@ -79,7 +79,7 @@ def _pool(workers: int) -> ProcessPoolExecutor:
 def _pids(pool: ProcessPoolExecutor) -> list[int]:
     """The pool's processes. Python has no public list of them (3.14 adds
     `terminate_workers` for what `_stop` does); its `_processes` maps pid to process."""
-    return list(pool._processes or {})
+    return list(pool._processes or {})  # noqa: SLF001 (no public list, as said)
 
 
 def _cpu_seconds(pool: ProcessPoolExecutor, now: float) -> float | None:
@@ -105,6 +105,22 @@ def _stop(pool: ProcessPoolExecutor) -> None:
         with contextlib.suppress(ProcessLookupError):
             os.kill(pid, signal.SIGTERM)
     pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _ready() -> None:
+    """A planner's first task: nothing beyond its initializer (`_start_worker`)."""
+
+
+def warm_planners(workers: int) -> None:
+    """Start the planner processes now rather than at the first plan: spawning one and
+    loading the compiled kernels (numba's cache) takes seconds, which the first "Show me a
+    shot" of a fresh server (or the computer's first turn) would otherwise wait for.
+    `python -m server` calls it at start-up; tests leave the planners to start on demand."""
+    if workers <= 0 or _stopped:
+        return
+    pool = _pool(workers)
+    for _ in range(workers):
+        pool.submit(_ready)
 
 
 def open_planners() -> None:
@@ -189,7 +205,9 @@ async def plan_turn(
     return await asyncio.to_thread(plan_data, level, seed, game, seat)
 
 
-async def _planned_in(future: asyncio.Future, pool: ProcessPoolExecutor, starved: float) -> bool:
+async def _planned_in(
+    future: asyncio.Future[Any], pool: ProcessPoolExecutor, starved: float
+) -> bool:
     """Wait for a plan sent to the planners: True once it is done, False once it has waited
     `starved` seconds or more while the planners got under `STARVED_SHARE` of a core. At
     Linux's idle class they get no CPU at all while work at normal priority keeps every
@@ -226,7 +244,7 @@ class ComputerSeat:
     workers: int = 0  # planner processes (0: plan in a thread)
     starved: float = STARVED_AFTER  # s a plan waits on starved planners before a thread takes it
     bot: Bot = field(init=False)
-    task: asyncio.Task | None = field(default=None, init=False)
+    task: asyncio.Task[None] | None = field(default=None, init=False)
 
     def __post_init__(self) -> None:
         self.bot = Bot(self.level, seed=self.room.seed)

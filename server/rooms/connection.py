@@ -18,6 +18,7 @@ import itertools
 from collections import deque
 from collections.abc import Awaitable, Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 from .ratelimit import TokenBucket
 
@@ -49,7 +50,7 @@ class Connection:
     _wake: asyncio.Event = field(default_factory=asyncio.Event)
     _refusing: bool = False  # chat refused since the last accepted line (told once)
     _sending_since: float | None = None  # loop time the batch being sent started
-    _sender: asyncio.Task | None = None
+    _sender: asyncio.Task[None] | None = None
     # Binary messages (a shot's `motion`); without it they are not sent (test doubles).
     send_bytes: Callable[[bytes], Awaitable[None]] | None = None
 
@@ -160,7 +161,7 @@ class Connection:
         return True
 
 
-async def cancel_quietly(task: asyncio.Task) -> None:
+async def cancel_quietly(task: asyncio.Task[Any]) -> None:
     task.cancel()
     with contextlib.suppress(asyncio.CancelledError, Exception):
         await task

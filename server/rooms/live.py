@@ -102,7 +102,7 @@ class LiveRoom:
     def touch(self) -> None:
         self.last_activity = self.clock.monotonic()
 
-    def on_joined(self, seat: int) -> None:
+    def on_joined(self) -> None:
         """A seat was taken over HTTP: tell the room; start the match clocks when full."""
         self.touch()
         self.ever_joined = True
@@ -182,6 +182,8 @@ class LiveRoom:
         if self.members:
             return False
         ttl = self.settings.idle_ttl if self.ever_joined else self.settings.waiting_ttl
+        if self.ever_joined and self.room.practice:
+            ttl = min(ttl, self.settings.practice_ttl)  # its player left: nobody else plays it
         return now - self.last_activity > ttl
 
     def resume(self, pending: tuple[int, Shot] | None = None) -> None:
@@ -225,25 +227,30 @@ class LiveRoom:
                 self.stream.relay(relay, exclude=conn)
             case Shoot(angle=angle, speed=speed, tip=tip):
                 self.start_shot(seat, _shot(angle, speed, tip))
-            case PlaceCue(x=x, y=y):
-                room.place_cue(seat, x, y)
-                self.changed()
-            case Call(pocket=pocket):
-                room.call_pocket(seat, pocket)
-                self.changed()
-            case Decide(option=option, game=game):
-                room.decide(seat, option, game)
-                self.changed()
-            case PushOut():
-                room.push_out(seat)
-                self.changed()
-            case Rerack():
-                room.rerack(seat)
+            case PlaceCue() | Call() | Decide() | PushOut() | Rerack():
+                self._arrange(seat, msg)
                 self.changed()
             case Concede(game=game):
                 self.conclude("concede", room.concede(seat, game))
             case Rematch():
                 self._rematch(seat)
+            case _:
+                assert_never(msg)
+
+    def _arrange(self, seat: int | None, msg: PlaceCue | Call | Decide | PushOut | Rerack) -> None:
+        """The actions that set the table up for the next shot (each then `changed`)."""
+        room = self.room
+        match msg:
+            case PlaceCue(x=x, y=y):
+                room.place_cue(seat, x, y)
+            case Call(pocket=pocket):
+                room.call_pocket(seat, pocket)
+            case Decide(option=option, game=game):
+                room.decide(seat, option, game)
+            case PushOut():
+                room.push_out(seat)
+            case Rerack():
+                room.rerack(seat)
             case _:
                 assert_never(msg)
 
@@ -276,7 +283,7 @@ class LiveRoom:
 
     def start_shot(self, seat: int | None, shot: Shot) -> None:
         """Strike `shot` for `seat` (refused with `ActionError`), then simulate and show."""
-        shot_id, before = self.room.begin_shot(seat, shot)
+        shot_id, before = self.room.begin_shot(seat)
         assert seat is not None
         self.timers.cancel_clock()
         self.observer.shot_started(self.room, seat, shot, shot_id)

@@ -13,13 +13,14 @@ from __future__ import annotations
 import math
 from collections import deque
 from dataclasses import dataclass, field
+from typing import Any
 
 
 def percentile(ordered: list[float], p: float) -> float:
     """Nearest-rank percentile of a sorted list (NaN when empty)."""
     if not ordered:
         return math.nan
-    return ordered[min(len(ordered) - 1, int(round(p / 100 * (len(ordered) - 1))))]
+    return ordered[min(len(ordered) - 1, round(p / 100 * (len(ordered) - 1)))]
 
 
 @dataclass
@@ -50,7 +51,7 @@ class StreamMetrics:
             self._starts.popleft()
         self._starts.append((now, seconds))
 
-    def summary(self, now: float, window: float) -> dict:
+    def summary(self, now: float, window: float) -> dict[str, Any]:
         """Lateness of the frames sent in the last `window` seconds, in milliseconds."""
         late = sorted(v for t, v in self._samples if now - t <= window)
         starts = sorted(v for t, v in self._starts if now - t <= window)

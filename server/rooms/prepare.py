@@ -17,7 +17,7 @@ def prepare_shot(
 ) -> tuple[ShotResult, ShotPlan]:
     """Simulate, trace and plan a shot and encode its `motion` message (a worker)."""
     motion = ShotInMotion(table, before, shot)
-    tracks = run_traced(table, motion)  # the engine's ticks and the tracks, in one pass
+    tracks = run_traced(motion)  # the engine's ticks and the tracks, in one pass
     result = motion.result()
     return result, plan_shot(result, tracks, shot_id, frame_every)
 

@@ -13,6 +13,7 @@ import itertools
 from collections.abc import Callable, Iterator
 from concurrent.futures import Future
 from dataclasses import dataclass
+from typing import Any
 
 from server.codec import to_data
 from server.engine import ENGINE_VERSION, BallSet, Shot
@@ -38,8 +39,8 @@ class StoreObserver:
     def __init__(self, db: Database) -> None:
         self.db = db
         self._ids: Iterator[int] = itertools.count(db.run(lambda repo: repo.last_match_id()) + 1)
-        self._epoch_of: Callable[[str], int | None] = lambda room_id: None
-        self._stale: Callable[[str], None] = lambda room_id: None
+        self._epoch_of: Callable[[str], int | None] = lambda _room_id: None
+        self._stale: Callable[[str], None] = lambda _room_id: None
         self._matches: dict[str, _Tracked] = {}
         self.active = True  # False once the server shuts down: rooms are kept, not deleted
 
@@ -181,7 +182,7 @@ class StoreObserver:
             return
         loop = asyncio.get_running_loop()
 
-        def done(f: Future) -> None:
+        def done(f: Future[Any]) -> None:
             if isinstance(f.exception(), StaleOwner):
                 loop.call_soon_threadsafe(self._stale, room_id)
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 import asyncio
 import logging
 from collections.abc import Callable
+from typing import Any
 
 from server.config import Settings
 from server.store import RoomSnapshot
@@ -44,7 +45,7 @@ class RoomRegistry:
         self.owners: dict[str, str] = {}  # room id -> the client that opened it
         self._open_by: dict[str, int] = {}  # client -> rooms it has open
         self._listed: list[LiveRoom] | None = None  # listed rooms, newest first (cached)
-        self._stats: dict[float, tuple[float, dict]] = {}  # window -> (loop time, stats)
+        self._stats: dict[float, tuple[float, dict[str, Any]]] = {}  # window -> (loop time, stats)
         self.metrics = StreamMetrics()
         # Told when a room opens here, and when one closes here for good (cluster mode
         # registers it with the others, then clears its shared entries).
@@ -201,7 +202,7 @@ class RoomRegistry:
             for conn in list(live.members.values())
         )
 
-    def stats(self, window: float) -> dict:
+    def stats(self, window: float) -> dict[str, Any]:
         """Rooms, members and the frame send lateness of the last `window` seconds. A walk
         over every room, so it is computed at most once a second per window: a flood of
         requests must not become O(rooms) work each on the event loop (a few rooms are

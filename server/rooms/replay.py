@@ -67,7 +67,8 @@ def result_message(record: ShotRecord, match: MatchRecord, seq: int) -> ReplayRe
 
 def duration_of(motion: bytes) -> float:
     """Seconds from the strike to the last tick, from the message's header."""
-    return HEADER.unpack_from(motion)[4] * TIME_UNIT
+    micros: int = HEADER.unpack_from(motion)[4]
+    return micros * TIME_UNIT
 
 
 async def stream_replay(

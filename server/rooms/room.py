@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 from typing import Any, Literal
 
 from server.codec import encode
-from server.engine import BallSet, Shot, ShotResult, Table
+from server.engine import BallSet, ShotResult, Table
 from server.protocol import BallRow, StreamFrames, Timed, frame_rows
 from server.protocol.limits import MAX_NAME
 from server.protocol.outbound import (
@@ -44,7 +44,7 @@ FIRST_BREAK_FACTOR = 4.0  # the room's first break: this many shot clocks to pla
 
 
 @functools.lru_cache(maxsize=8)
-def _table_dict(table: Table) -> dict:
+def _table_dict(table: Table) -> dict[str, Any]:
     """A table never changes: its geometry goes into every `state`, built once. (The
     encoder only reads it.)"""
     return table.to_dict()
@@ -69,7 +69,7 @@ class ShotInProgress:
 
     id: int
     seat: int
-    match_before: dict  # the match as it was when the shot was struck
+    match_before: dict[str, Any]  # the match as it was when the shot was struck
     before: list[BallRow]  # the table when it was struck
     ticks: int = 0  # last tick of the shot (0 while it is being simulated)
     tick: int = 0  # the tick shown now
@@ -212,7 +212,7 @@ class Room:
         decision = self.match.game.decision
         return decision.seat if decision is not None else self.match.game.turn
 
-    def summary(self) -> dict:
+    def summary(self) -> dict[str, Any]:
         return {
             "room_id": self.room_id,
             "game": self.game,
@@ -240,7 +240,7 @@ class Room:
         balls: BallSet = self.match.game.balls
         return frame_rows(balls.ids, balls.positions, balls.cels(), balls.on_table)
 
-    def table_dict(self) -> dict:
+    def table_dict(self) -> dict[str, Any]:
         return _table_dict(self._table())
 
     def table_json(self) -> str:
@@ -326,7 +326,7 @@ class Room:
             raise ActionError("match_over", "The match is over; ask for a rematch.")
         return self.match, seat
 
-    def begin_shot(self, seat: int | None, shot: Shot) -> tuple[int, BallSet]:
+    def begin_shot(self, seat: int | None) -> tuple[int, BallSet]:
         """Check that `seat` may shoot now and mark the table busy; returns (shot id, balls).
 
         The caller simulates the shot from the returned copy, then calls `apply_shot`.

@@ -1,10 +1,11 @@
 """Where shots are simulated: in threads of this process, or in worker processes.
 
-Threads (the default) run only compiled code that releases the GIL, one call a shot: the
-engine's ticks and, in the same pass, the shot's exact motion for the `motion` message
-(`protocol.motion.run_traced`: each tick with contacts replayed up to them, then thinned
-and packed). The Python before and after (the strike, turning the kernel's arrays into
-events, the sounds and the message's header: well under 1 ms) runs on the event loop. A
+Threads (the default) run one compiled call a shot that releases the GIL: the engine's
+traced run (`ShotInMotion.run(trace=...)`: the ticks and, in the same pass, each tick with
+contacts replayed up to them and thinned to the knots of the `motion` message), then
+`protocol.motion` packs the knots, holding the GIL for a few microseconds. The Python
+before and after (the strike, turning the kernel's arrays into events, the sounds and the
+message's header: well under 1 ms) runs on the event loop. A
 thread that ran all of `prepare_shot` had to win the GIL back from the busy loop after
 every compiled or numpy call, and while it held it the loop waited in turn: under load
 (100+ rooms) a 4 ms shot took 0.3-2 s to start and every room's stream stalled
@@ -85,9 +86,7 @@ class ShotRunner:
                 log.error("the shot worker process died; simulating in threads from now on")
                 self._pool = None
         motion = ShotInMotion(table, before, shot)
-        tracks = await asyncio.get_running_loop().run_in_executor(
-            self._threads, run_traced, table, motion
-        )
+        tracks = await asyncio.get_running_loop().run_in_executor(self._threads, run_traced, motion)
         result = motion.result()
         return result, plan_shot(result, tracks, shot_id, self.frame_every)
 

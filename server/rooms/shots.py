@@ -54,7 +54,7 @@ class ShotPlayer:
         self.metrics = metrics
         self.pace = pace
         self.end = end
-        self._task: asyncio.Task | None = None
+        self._task: asyncio.Task[None] | None = None
 
     def start(self, seat: int, shot: Shot, shot_id: int, before: BallSet) -> None:
         """Play a shot the room has begun (`Room.begin_shot`)."""

@@ -108,9 +108,16 @@ class SeatTimers:
             return []
         now = asyncio.get_running_loop().time()
         return [
-            GraceInfo(seat=t.seat, remaining=round(max(0.0, t.deadline - now), 2))
+            GraceInfo(
+                seat=t.seat, remaining=round(max(0.0, t.deadline - now), 2), left=self._seen(t.seat)
+            )
             for t in sorted(self._grace.values(), key=lambda t: t.seat)
         ]
+
+    def _seen(self, seat: int) -> bool:
+        """The seat's player has been at the table (connected once)."""
+        held = self.room.seats[seat]
+        return held is not None and held.seen
 
     def start_grace(self, seat: int) -> None:
         """`seat`'s player is away: the seat is kept for the grace period (not in practice,

@@ -8,8 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from server.engine import CUE, BallSet, EventKind, Settled, ShotResult
-from server.engine.physics.constants import POCKETED
+from server.engine import CUE, BallSet, EventKind, MotionState, Settled, ShotResult
 from server.engine.results import EVENT_CODES
 
 # Kind codes of `contacts()` (read once: a shot's facts are read for every simulated shot).
@@ -17,6 +16,7 @@ _BALL, _CUSHION, _JAW, _POCKET = (
     EVENT_CODES.index(kind)
     for kind in (EventKind.BALL, EventKind.CUSHION, EventKind.JAW, EventKind.POCKET)
 )
+_POCKETED = int(MotionState.POCKETED)  # a ball's state code once it dropped
 
 
 @dataclass(frozen=True)
@@ -70,7 +70,7 @@ def shot_facts(before: BallSet, result: ShotResult | Settled) -> ShotFacts:
             order.append(ball)
             pockets[ball] = target
     final = result.final
-    gone = (before.states != POCKETED) & (final.states == POCKETED)
+    gone = (before.states != _POCKETED) & (final.states == _POCKETED)
     dropped = set(final.ids[gone].tolist()) if gone.any() else set()
     if dropped != pockets.keys():
         for ball in sorted(dropped - set(order)):

@@ -10,6 +10,7 @@ import pytest
 
 from server.ai import LEVELS, Bot, Turn, play_turn
 from server.ai.aiming import aimed, clamp_shot, departure, perturb, strike_gain
+from server.ai.bot import BREAKS, break_spot, still_racked
 from server.ai.geometry import best_chance, pot_options
 from server.ai.levels import BY_NAME
 from server.ai.search import (
@@ -120,6 +121,21 @@ def test_break_places_behind_the_head_string_and_is_legal(eight: Game, nine: Gam
         assert turn.shot is not None and turn.shot.speed > 6.0
         outcome, _ = play_turn(game, 0, turn)
         assert outcome is not None and not outcome.fouls
+
+
+def test_a_fresh_practice_rack_gets_the_tuned_break_and_a_broken_one_does_not() -> None:
+    """Practice has no break in its rules, but a racked table's shot is the break: the
+    rack's tuned stroke (`BREAKS`) from its spot, as "Show me a shot" shows it."""
+    game = Game.new("practice", ["ana"], seed=4)
+    turn = Bot(Bot.LEVELS[-1], seed=4).plan(game, 0)
+    assert turn.kind == "break" and turn.place == break_spot(
+        game.table, BREAKS["eight_ball"].offset
+    )
+    assert turn.shot is not None and turn.shot.speed == BREAKS["eight_ball"].speed
+    outcome, _ = play_turn(game, 0, turn)
+    assert outcome is not None
+    assert not still_racked(game.rules, game.balls, game.table)
+    assert Bot(Bot.LEVELS[-1], seed=4).plan(game, 0).kind != "break"
 
 
 @pytest.mark.parametrize(("kind", "at_least"), [("eight_ball", 150), ("nine_ball", 88)])

@@ -29,6 +29,7 @@ async def _never_returns(_text: str) -> None:
     await asyncio.Event().wait()
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_spectator_that_never_reads_does_not_slow_the_players(settings):
     with make_client(settings, send_timeout=0.5) as client:
         room_id, ta, tb = seated_room(client)

@@ -116,6 +116,7 @@ def every_core_busy() -> Iterator[None]:
             loop.wait()
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_the_computer_still_moves_when_other_work_starves_its_planner(
     tmp_path: Path, caplog: pytest.LogCaptureFixture
 ):
@@ -143,11 +144,29 @@ def test_the_computer_is_only_for_real_games_at_known_levels(client: TestClient)
     assert bad_level.status_code == 422 and practice.status_code == 422
 
 
+def play_hint(client: TestClient, room_id: str, token: str, hint: dict) -> dict:
+    """Place the cue ball where the hint has it and play its shot; the shot's result."""
+    with client.websocket_connect(f"/ws/rooms/{room_id}?token={token}") as ws:
+        x, y = hint["place"]
+        ws.send_json({"type": "place_cue", "x": x, "y": y})
+        ws.send_json(
+            {"type": "shoot", "angle": hint["angle"], "speed": hint["speed"], "tip": hint["tip"]}
+        )
+        while (message := next_json(ws))["type"] != "shot_result":
+            assert message["type"] != "error", message
+    return message
+
+
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_a_hint_shows_the_strongest_plan_without_playing_it(client: TestClient):
     room_id = client.post("/api/rooms", json={"game": "practice", "listed": False}).json()[
         "room_id"
     ]
     ana = client.post(f"/api/rooms/{room_id}/join", json={"name": "Ana"}).json()
+    # A fresh rack: the plan is the break (the computer's own), which the room accepts.
+    rack = client.post(f"/api/rooms/{room_id}/hint", json={"token": ana["token"]}).json()
+    assert rack["kind"] == "break" and rack["place"] is not None and rack["speed"] >= 10.0
+    assert play_hint(client, room_id, ana["token"], rack)["outcome"]["shooter"] == 0
     before = client.get(f"/api/rooms/{room_id}").json()["state"]
     reply = client.post(f"/api/rooms/{room_id}/hint", json={"token": ana["token"]})
     assert reply.status_code == 200, reply.text
@@ -163,15 +182,7 @@ def test_a_hint_shows_the_strongest_plan_without_playing_it(client: TestClient):
     # Nothing was played: the table and the turn are as they were.
     assert client.get(f"/api/rooms/{room_id}").json()["state"] == before
     # The plan is one the room accepts: place the cue ball there and play it.
-    with client.websocket_connect(f"/ws/rooms/{room_id}?token={ana['token']}") as ws:
-        x, y = hint["place"]
-        ws.send_json({"type": "place_cue", "x": x, "y": y})
-        ws.send_json(
-            {"type": "shoot", "angle": hint["angle"], "speed": hint["speed"], "tip": hint["tip"]}
-        )
-        while (message := next_json(ws))["type"] != "shot_result":
-            assert message["type"] != "error", message
-    assert message["outcome"]["shooter"] == 0
+    assert play_hint(client, room_id, ana["token"], hint)["outcome"]["shooter"] == 0
 
 
 def test_a_hint_is_for_the_player_of_a_practice_table(client: TestClient):

@@ -89,6 +89,7 @@ async def play(address: str, room_id: str, tokens: list[str]) -> None:
             await ws.close()
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_real_server_plays_shots_with_reconnection_mid_shot(settings):
     with live_server(settings.replace(pace=1.0)) as address, http(address) as client:
         room_id, ta, tb = seated_room(client)

@@ -465,6 +465,7 @@ async def _press_play_now(base: str, count: int) -> list[dict]:
     return await asyncio.gather(*(one(s) for s in secrets))
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_a_hundred_concurrent_play_now_presses_make_fifty_rooms(settings):
     with live_server(settings) as address:
         seen = asyncio.run(_press_play_now(f"http://{address}", 100))

@@ -17,6 +17,7 @@ from tests.support.rooms import connect, make_client, seated_room
 pytestmark = pytest.mark.timeout(120)
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_a_worker_process_gives_the_same_result_and_messages():
     table = Table.pool("9ft")
     balls = rack("eight_ball", table, seed=11)
@@ -38,6 +39,7 @@ def test_a_worker_process_gives_the_same_result_and_messages():
     assert np.array_equal(result.frames.positions, here.frames.positions)
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_a_room_streams_a_break_simulated_in_the_worker(settings):
     with make_client(settings, shot_workers=1, pace=4.0) as client:
         room_id, ta, _ = seated_room(client)

@@ -107,6 +107,7 @@ def _check_break_stream(stream: list[dict]) -> None:
         assert abs(track["y"][-1] * 1000 - y_mm) <= 0.6
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_member_joining_mid_shot_gets_state_and_the_motion(settings):
     """A late joiner gets where the shot is now (`state.shot.tick`) and the same motion
     message the others got at the strike, to play from that tick on."""

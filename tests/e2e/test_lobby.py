@@ -16,6 +16,8 @@ pytestmark = pytest.mark.browser
 def test_lobby_lists_tables_to_join_or_watch_and_remembers_the_name(base_url, new_page):
     ana = new_page()
     ana.goto(base_url + "/")
+    expect(ana.get_by_test_id("name")).to_have_value(re.compile(r"^Player "))  # the profile's
+    ana.get_by_test_id("name").fill("")
     ana.get_by_test_id("create-room").click()
     expect(ana.get_by_test_id("lobby-error")).to_contain_text("name")  # no name, no table
     ana.get_by_test_id("name").fill("Ana")

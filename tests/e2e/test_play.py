@@ -147,15 +147,15 @@ def test_break_seen_by_both_players_and_a_spectator_then_reload_rejoins(
 
 
 def test_a_game_against_the_computer_from_the_lobby(base_url, new_page, artifacts):
-    """Alone in the lobby: pick the computer as the opponent; it takes the second seat, and
+    """Alone in the lobby: play the computer (its own card); it takes the second seat, and
     after Ana's break it is seen playing its own turn."""
     ana = new_page()
     ana.goto(base_url + "/")
     ana.get_by_test_id("name").fill("Ana")
-    ana.get_by_test_id("game-select").select_option("eight_ball")
-    expect(ana.get_by_test_id("opponent")).to_contain_text("The computer: beginner")
-    ana.get_by_test_id("opponent").select_option("beginner")
-    ana.get_by_test_id("create-room").click()
+    ana.get_by_test_id("computer-game").select_option("eight_ball")
+    expect(ana.get_by_test_id("computer-level")).to_contain_text("Beginner")
+    ana.get_by_test_id("computer-level").select_option("beginner")
+    ana.get_by_test_id("play-computer").click()
     ana.wait_for_url(re.compile(r"/r/[A-Za-z0-9_-]+$"))
     wait_ready(ana, "aiming")
     expect(ana.get_by_test_id("player-1")).to_contain_text("Computer (beginner)")

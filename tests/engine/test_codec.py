@@ -163,7 +163,7 @@ def ball_sets(draw: st.DrawFn) -> BallSet:
 @settings(deadline=None)
 @given(ball_sets())
 def test_a_ball_set_round_trips_bit_for_bit(balls: BallSet) -> None:
-    for back in round_trips(balls) + [BallSet.from_dict(balls.to_dict())]:
+    for back in [*round_trips(balls), BallSet.from_dict(balls.to_dict())]:
         assert isinstance(back, BallSet)
         assert same_balls(back, balls)
         assert all(getattr(back, name).flags.c_contiguous for name in ARRAYS)

@@ -197,7 +197,7 @@ def changed_cases(old: Mapping[str, Any], new: Mapping[str, Any]) -> list[str]:
 def test_the_golden_cases_are_the_recorded_ones() -> None:
     lines = changed_cases(recorded(), current())
     assert not lines, "the golden cases differ from data/golden.json:\n" + "\n".join(
-        lines + [f"regenerate with: {COMMAND}"]
+        [*lines, f"regenerate with: {COMMAND}"]
     )
 
 

@@ -104,7 +104,7 @@ def test_side_pocket_windows(table, angle, speed):
         assert sum(ours) < 30
 
 
-def hang(table, pocket_name, mouth, direction, dist=0.5):
+def hang(table, mouth, direction, dist=0.5):
     """Bisect the speed between staying and dropping: (rest point of the fastest ball
     that stays, its distance past the mouth line in mm, the slowest that drops)."""
     lo, hi = 0.1, 0.6
@@ -122,7 +122,7 @@ def hang(table, pocket_name, mouth, direction, dist=0.5):
 
 def test_a_slow_ball_hangs_on_a_corner_pockets_shelf(table):
     mouth, u = approach(table, "bottom_left")
-    rest, past = hang(table, "bottom_left", mouth, u)
+    rest, past = hang(table, mouth, u)
     pocket = table.pockets[0]
     # It stops past the mouth line, on the shelf, and stays on the table: a hanger.
     assert past == pytest.approx(pocket.shelf * 1000, abs=0.5)
@@ -133,7 +133,7 @@ def test_a_slow_ball_hangs_on_a_corner_pockets_shelf(table):
 
 def test_a_slow_ball_hangs_in_a_side_pocket(table):
     mouth, d = approach(table, "bottom_side", 90)
-    rest, past = hang(table, "bottom_side", mouth, d)
+    rest, past = hang(table, mouth, d)
     assert 0 < past == pytest.approx(table.pockets[1].shelf * 1000, abs=0.5)
     assert past == pytest.approx(POOLTOOL_SIDE_HANGER_MM, abs=2.5)
     assert past <= 9.525  # WPA side shelf 0 to 3/8 in
@@ -147,7 +147,7 @@ def test_a_ball_into_the_facing_rattles(table):
     across = np.array([-u[1], u[0]])
     rattles = 0
     for mm in range(20, 60, 2):
-        balls, events = roll(table, mouth - 0.5 * u + mm / 1000 * across, u, 1.5)
+        _balls, events = roll(table, mouth - 0.5 * u + mm / 1000 * across, u, 1.5)
         jaws = [e for e in events if e.kind == "jaw"]
         if len(jaws) >= 2:
             rattles += 1

@@ -61,6 +61,7 @@ SETTINGS = settings(
 )
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 @SETTINGS
 @given(balls=placements(), shot=shots)
 def test_every_tick_ends_without_overlap_and_on_the_bed(balls, shot):

@@ -30,7 +30,7 @@ def play_until(table, balls, shot, stop, max_ticks=2000):
 
 
 def hit(a, b):
-    return lambda balls, events: any(e.kind == "ball" and set(e.ids) == {a, b} for e in events)
+    return lambda _balls, events: any(e.kind == "ball" and set(e.ids) == {a, b} for e in events)
 
 
 def velocity(balls, ball_id):
@@ -167,7 +167,7 @@ def test_a_stun_cushion_rebound_keeps_hans_share_of_the_normal_speed(table):
     # (1 + e) cos^2 t + 2/7 sin^2 t - 1 of it (0.74 at e = 0.85; see test_cushion.py).
     balls = BallSet.place({0: (1.0, 0.04)})  # 11 mm from the rail: still a stun ball
     events = play_until(
-        table, balls, Shot(-math.pi / 2, 2.0), lambda b, ev: any(e.kind == "cushion" for e in ev)
+        table, balls, Shot(-math.pi / 2, 2.0), lambda _b, ev: any(e.kind == "cushion" for e in ev)
     )
     bounce = next(e for e in events if e.kind == "cushion")
     vx, vy = velocity(balls, 0)
@@ -186,7 +186,7 @@ def rebound_tangent(table, side):
         table,
         balls,
         Shot(-math.pi / 4 - squirt, 2.0, tip=(side, 0.0)),
-        lambda b, ev: any(e.kind == "cushion" for e in ev),
+        lambda _b, ev: any(e.kind == "cushion" for e in ev),
     )
     return velocity(balls, 0)[0]
 
@@ -200,7 +200,7 @@ def test_side_spin_bends_the_rebound(table):
 
 def test_rolling_ball_turns_its_cels_by_the_distance_rolled(table):
     balls = BallSet.place({0: (0.3, 0.6)})
-    play_until(table, balls, Shot(0.0, 1.0, tip=(0, 0.4)), lambda b, _: True)
+    play_until(table, balls, Shot(0.0, 1.0, tip=(0, 0.4)), lambda _b, _ev: True)
     phase0, x0 = balls.phases[0], balls.positions[0, 0]
     for k in range(30):
         step(table, balls, TICK, k * TICK)

@@ -88,6 +88,6 @@ def test_throw_conserves_momentum_and_loses_energy():
 
 
 def test_a_head_on_stun_hit_has_no_throw_and_the_stop_shot_holds():
-    throw, wz, vel, w = cut_shot(2.0, 0, rolling=False)
+    throw, wz, vel, _w = cut_shot(2.0, 0, rolling=False)
     assert throw == 0.0 and wz == 0.0
     assert abs(vel[0, 0]) < 0.05 * 2.0

@@ -28,7 +28,7 @@ def _break(event_capacity: int) -> tuple:
 def test_a_break_that_grows_its_arrays_is_the_same_break() -> None:
     grown = _break(0)  # room for 64 events before the first growth: a break logs more
     roomy = _break(1 << 16)
-    positions, cels, on_table, events, stalls, ticks, final = grown
+    _positions, _cels, _on_table, events, stalls, ticks, final = grown
     # The kernel grows the event array before a tick once fewer than
     # MAX_EVENTS_PER_TICK + 65 rows are free: here after the 64th event, and events
     # come a tick or more later, so they were written into the grown array.

@@ -90,7 +90,6 @@ def requests(client: TestClient) -> list[tuple[str, str, bytes | None]]:
         ("POST", f"/api/rooms/{practice}/join", body)
         for body in (
             raw({"name": 5}),
-            raw({"name": None}),
             raw({"name": ["a"]}),
             raw({"name": "Ann", "ranked": "yes"}),
             b'{"name": "\\ud800\\udc00\\ud800"}',
@@ -177,8 +176,8 @@ def test_names_are_refused_with_a_sentence(client: TestClient):
             f"/api/rooms/{room_id}/join", content=raw({"name": name}), headers=JSON
         )
         assert response.status_code == 422
-        (error,) = response.json()["detail"]
-        assert error["type"] == "bad_name" and words in error["msg"]
+        detail = response.json()["detail"]
+        assert detail["code"] == "bad_name" and words in detail["message"]
     assert client.get(f"/api/rooms/{room_id}").json()["players"] == [None, None]
     assert join(client, room_id, "Zoë 🎱")["name"] == "Zoë 🎱"  # any printable text is a name
 

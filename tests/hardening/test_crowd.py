@@ -160,6 +160,7 @@ def seated_on(address: str) -> tuple[str, list[str]]:
     ]
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_a_chatting_churning_crowd_closes_no_player(tmp_path: Path):
     settings = Settings(
         web_dir=tmp_path,
@@ -193,6 +194,7 @@ async def burst(address: str, room_id: str, tokens: list[str]) -> tuple[list[int
     return players.results, players.closes
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_a_chat_burst_and_a_crowd_vanishing_close_no_player(tmp_path: Path):
     settings = Settings(
         web_dir=tmp_path, db_path=tmp_path / "pool.db", pace=4.0, max_spectators=300, shot_clock=0.0
@@ -220,6 +222,7 @@ async def reconnecting(base: str, times: int, address: str) -> list[object]:
     return seen
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_one_address_reconnecting_in_a_loop_is_refused_past_its_quota(tmp_path: Path):
     settings = Settings(
         web_dir=tmp_path, db_path=tmp_path / "pool.db", watch_rate="10/minute", shot_clock=0.0

@@ -24,6 +24,7 @@ pytestmark = pytest.mark.timeout(120)
 TABLE = [2.54, 1.27, 0.028575, 0.114, 0.127]
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_writes_wait_out_a_12_second_lock_in_order(tmp_path: Path):
     db = Database(tmp_path / "pool.db")
     db.run(lambda repo: repo.start_match(1, "room", "practice", ["Ana"], 1))
@@ -60,6 +61,7 @@ def test_writes_wait_out_a_12_second_lock_in_order(tmp_path: Path):
     assert [r.data for r in rooms] == [{"after_shot": 5}]
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_a_process_starting_while_another_holds_the_new_file_waits_for_it(tmp_path: Path):
     """Two servers starting at once on one new SQLite file: whichever connects second is
     told "locked" when it turns the journal to WAL. It tries again, not exits."""
@@ -113,6 +115,7 @@ def slow_client(tmp_path: Path) -> Iterator[TestClient]:
         yield c
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_a_shot_is_public_only_once_it_has_been_shown(slow_client: TestClient):
     client = slow_client
     room_id = client.post("/api/rooms", json={"game": "eight_ball"}).json()["room_id"]

@@ -228,3 +228,28 @@ def test_only_deps_reads_the_app_state():
     `app.state` in their bodies."""
     readers = [p.name for p in API.glob("*.py") if "app.state" in p.read_text()]
     assert readers == ["deps.py"]
+
+
+def reaches_into_physics(modules: dict[str, set[str]]) -> list[str]:
+    """Imports of the engine's compiled core (`server.engine.physics`) from outside the
+    engine: the rest of the server goes through `server.engine`'s public names, so a change
+    to the physics is made in one place."""
+    return sorted(
+        f"{module} -> {target}"
+        for module, imported in modules.items()
+        if layer(module) != "engine"
+        for target in imported
+        if target == "server.engine.physics" or target.startswith("server.engine.physics.")
+    )
+
+
+def test_only_the_engine_imports_its_physics():
+    assert reaches_into_physics(MODULES) == []
+
+
+def test_the_check_sees_a_reach_into_the_physics():
+    modules = {
+        "server.protocol.motion": {"server.engine.physics.tick", "server.engine"},
+        "server.engine.simulate": {"server.engine.physics.tick"},
+    }
+    assert reaches_into_physics(modules) == ["server.protocol.motion -> server.engine.physics.tick"]

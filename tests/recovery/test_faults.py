@@ -278,6 +278,7 @@ async def fuzz(address: str, rooms: list[tuple[str, str, list[str]]]) -> None:
             check_consistent(await wait_at_rest(http_client, room), kind)
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_many_clients_fuzzing_at_once_leave_every_room_consistent_and_playable(settings) -> None:
     with live_server(settings.replace(pace=20.0)) as address:
         asyncio.run(fuzz(address, open_rooms(address)))

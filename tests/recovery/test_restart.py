@@ -84,6 +84,7 @@ async def collect_close(ws) -> int | None:
         return exc.rcvd.code if exc.rcvd else None
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_server_restart_mid_shot_loses_nothing(settings) -> None:
     settings = settings.replace(pace=2.0)
     port = free_port()

@@ -8,6 +8,7 @@ import asyncio
 
 import pytest
 
+from server.config import Settings
 from server.rooms import ActionError, RoomRegistry, SeedSource
 from server.rooms.clock import ManualClock
 from server.rooms.connection import Connection
@@ -17,7 +18,8 @@ from server.rooms.snapshot import room_to_snapshot
 from server.store import RoomSnapshot
 from tests.support.settings import FAST
 
-SETTINGS = FAST.replace(idle_ttl=100.0, waiting_ttl=40.0, max_rooms=3)
+# practice_ttl as long as idle_ttl: the tests below of rooms in general use practice rooms.
+SETTINGS = FAST.replace(idle_ttl=100.0, waiting_ttl=40.0, practice_ttl=100.0, max_rooms=3)
 
 
 class Recorder:
@@ -32,14 +34,14 @@ class Recorder:
     def room_closed(self, room: Room) -> None:
         self.calls.append(("closed", room.room_id))
 
-    def room_restored(self, room: Room, match_id: int | None) -> None:
+    def room_restored(self, room: Room, match_id: int | None) -> None:  # noqa: ARG002 (the observer's signature)
         self.calls.append(("restored", room.room_id))
 
     def room_unreadable(self, room_id: str) -> None:
         self.calls.append(("unreadable", room_id))
 
 
-async def _never(text: str) -> None:
+async def _never(_text: str) -> None:
     raise AssertionError("nothing is sent in these tests")
 
 
@@ -52,10 +54,12 @@ def clock() -> ManualClock:
     return ManualClock(now=1_767_000_000.0, ticks=500.0)
 
 
-def registry_with(clock: ManualClock, *seeds: int) -> tuple[RoomRegistry, Recorder]:
+def registry_with(
+    clock: ManualClock, *seeds: int, settings: Settings = SETTINGS
+) -> tuple[RoomRegistry, Recorder]:
     observer = Recorder()
     registry = RoomRegistry(
-        SETTINGS,
+        settings,
         observer,
         clock=clock.clock,  # type: ignore[arg-type]
         seeds=SeedSource.fixed(*seeds) if seeds else None,
@@ -101,7 +105,7 @@ def test_a_room_someone_joined_lives_for_the_idle_ttl_from_its_last_use(clock) -
     live = registry.create("eight_ball")
     live.room.join("Ana")
     clock.advance(30.0)
-    live.on_joined(0)  # joined 30 s after it opened: the idle clock starts again
+    live.on_joined()  # joined 30 s after it opened: the idle clock starts again
     clock.advance(SETTINGS.waiting_ttl + 1)
     assert registry.sweep() == []  # past the waiting ttl, but someone joined
     clock.advance(SETTINGS.idle_ttl - SETTINGS.waiting_ttl - 1)
@@ -114,7 +118,7 @@ def test_a_room_with_a_member_never_expires_and_idles_from_when_they_left(clock)
     registry, _ = registry_with(clock, 1)
     live = registry.create("practice")
     seat, _ = live.room.join("Ana")
-    live.on_joined(seat)
+    live.on_joined()
     conn = member(seat)
     live.attach(conn)
     clock.advance(10 * SETTINGS.idle_ttl)
@@ -124,6 +128,29 @@ def test_a_room_with_a_member_never_expires_and_idles_from_when_they_left(clock)
     assert registry.sweep() == []
     assert registry.sweep(clock.ticks + 0.001) == [live.room.room_id]  # an explicit time
     assert conn.close_code is None  # it had left; nobody was connected to close
+
+
+def test_a_practice_table_closes_soon_after_its_player_left(clock) -> None:
+    """Nobody else plays it: once its player left it is gone after `practice_ttl`, no
+    longer listed, and no longer one of its owner's open tables."""
+    settings = SETTINGS.replace(practice_ttl=20.0, max_rooms_per_client=1)
+    registry, _ = registry_with(clock, 1, settings=settings)
+    live = registry.create("practice", owner="1.2.3.4")
+    seat, _ = live.room.join("Ana")
+    live.on_joined()
+    conn = member(seat)
+    live.attach(conn)
+    with pytest.raises(ActionError):
+        registry.create("practice", owner="1.2.3.4")  # one open table allowed
+    clock.advance(SETTINGS.idle_ttl)
+    assert registry.sweep() == []  # played as long as she likes
+    live.detach(conn)
+    clock.advance(20.0)
+    assert registry.sweep() == []
+    clock.advance(0.001)
+    assert registry.sweep() == [live.room.room_id]
+    assert registry.listing() == []
+    assert registry.create("practice", owner="1.2.3.4").room.practice
 
 
 def test_the_room_limit_refuses_new_rooms_until_one_expires(clock) -> None:

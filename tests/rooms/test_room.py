@@ -117,7 +117,7 @@ def test_a_shot_goes_from_aiming_to_rolling_and_back_with_the_judged_outcome() -
     rack = room.resting_balls()
     assert len(rack) == 16 and rack[0][:3] == (0, 635, 635)  # the cue ball on the head spot
 
-    shot_id, before = room.begin_shot(0, BREAK)
+    shot_id, before = room.begin_shot(0)
     assert (shot_id, room.shots_played, room.phase, room.acting_seat()) == (1, 1, "rolling", None)
     assert room.shot is not None and (room.shot.id, room.shot.seat) == (1, 0)
     assert room.shot.before == rack and room.shot.balls == rack  # nothing streamed yet
@@ -173,7 +173,7 @@ def test_after_a_scratch_the_other_seat_acts_with_ball_in_hand() -> None:
     strike(room, EIGHT_BALL_SCRATCH)
     assert room.match is not None and room.acting_seat() == 1
     assert not room.match.game.balls.on_table[0]
-    refused(room, lambda: room.begin_shot(1, BREAK), "cue_ball_off_table")
+    refused(room, lambda: room.begin_shot(1), "cue_ball_off_table")
     refused(room, lambda: room.place_cue(0, *EIGHT_BALL_PLACE), "not_your_turn")
     room.place_cue(1, *EIGHT_BALL_PLACE)
     x, y = EIGHT_BALL_PLACE
@@ -184,7 +184,7 @@ def test_a_pending_decision_names_the_acting_seat_and_blocks_shooting() -> None:
     room, _ = seated("eight_ball", EIGHT_BALL)
     strike(room, SOFT_BREAK)  # an illegal break: Ben chooses
     assert room.acting_seat() == 1
-    refused(room, lambda: room.begin_shot(1, BREAK), "decision_pending")
+    refused(room, lambda: room.begin_shot(1), "decision_pending")
     refused(room, lambda: room.decide(0, "accept"), "not_your_turn")
     refused(room, lambda: room.decide(1, "maybe"), "bad_option")
     room.decide(1, "accept")
@@ -209,17 +209,17 @@ def test_push_out_and_pocket_calls_follow_the_rules() -> None:
 def test_refusals_raise_with_their_code_and_change_nothing() -> None:
     waiting = Room("r00m1d_abcde", "eight_ball", seed=EIGHT_BALL)
     waiting.join("Ana")
-    refused(waiting, lambda: waiting.begin_shot(0, BREAK), "not_started")
+    refused(waiting, lambda: waiting.begin_shot(0), "not_started")
     refused(waiting, lambda: waiting.check_aim(0), "not_started")
     refused(waiting, lambda: waiting.vote_rematch(0), "match_not_over")
 
     room, _ = seated("eight_ball", EIGHT_BALL)
     for action, code in [
-        (lambda: room.begin_shot(None, BREAK), "spectator"),
+        (lambda: room.begin_shot(None), "spectator"),
         (lambda: room.place_cue(None, 0.4, 0.5), "spectator"),
         (lambda: room.concede(None), "spectator"),
         (lambda: room.vote_rematch(None), "spectator"),
-        (lambda: room.begin_shot(1, BREAK), "not_your_turn"),
+        (lambda: room.begin_shot(1), "not_your_turn"),
         (lambda: room.check_aim(1), "not_your_turn"),
         (lambda: room.place_cue(1, 0.4, 0.5), "not_your_turn"),
         (lambda: room.place_cue(0, 2.0, 0.5), "illegal_placement"),  # past the head string
@@ -230,9 +230,9 @@ def test_refusals_raise_with_their_code_and_change_nothing() -> None:
         refused(room, action, code)
     room.check_aim(0)  # the breaker may aim
 
-    room.begin_shot(0, BREAK)  # while the balls roll nobody may act
+    room.begin_shot(0)  # while the balls roll nobody may act
     for action in (
-        lambda: room.begin_shot(0, BREAK),
+        lambda: room.begin_shot(0),
         lambda: room.concede(1),
         lambda: room.check_aim(0),
         lambda: room.timeout(0),
@@ -246,7 +246,7 @@ def test_a_finished_match_refuses_play() -> None:
     assert outcome.winner == 0 and outcome.frame_over
     assert room.phase == "over" and room.status == "finished" and room.acting_seat() is None
     for action in (
-        lambda: room.begin_shot(0, BREAK),
+        lambda: room.begin_shot(0),
         lambda: room.concede(0),
         lambda: room.place_cue(0, 0.4, 0.5),
         lambda: room.timeout(0),

@@ -77,7 +77,7 @@ def test_a_pending_shot_is_saved_with_the_table_before_it_and_replays_the_same()
     room.place_cue(1, *EIGHT_BALL_PLACE)
     before_state = room.match.to_dict()
     shot = Shot(1.0, 5.0, (0.1, 0.1))
-    shot_id, before = room.begin_shot(1, shot)
+    shot_id, before = room.begin_shot(1)
     text = encode(room_to_snapshot(room, 5, pending_shot(shot_id, 1, shot)))
     live_result = simulate(room.match.game.table, before, shot)
     room.apply_shot(live_result)  # the server died after this, mid-stream
@@ -89,7 +89,7 @@ def test_a_pending_shot_is_saved_with_the_table_before_it_and_replays_the_same()
     assert back.phase == "aiming" and back.shots_played == 2
     assert back.shots_by_seat == [2, 0]  # as before the pending shot was struck
     replay_seat, replay = pending
-    again_id, again_before = back.begin_shot(replay_seat, replay)
+    again_id, again_before = back.begin_shot(replay_seat)
     assert again_id == shot_id
     again = simulate(back.match.game.table, again_before, replay)
     assert again.frames.positions.tobytes() == live_result.frames.positions.tobytes()
@@ -166,7 +166,7 @@ def test_a_room_saved_mid_shot_in_the_first_form_loads_with_its_pending_shot() -
     assert [room.seat_of("ana-token"), room.seat_of("ben-token")] == [0, 1]
     # the restart strikes it again from here: the same shot id, judged for Ben
     seat, shot = saved.pending
-    shot_id, before = room.begin_shot(seat, shot)
+    shot_id, before = room.begin_shot(seat)
     assert shot_id == 3 and before.positions.tolist() == room.match.game.balls.positions.tolist()
     outcome = room.apply_shot(simulate(room.match.game.table, before, shot))
     room.end_shot()

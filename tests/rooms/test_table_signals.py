@@ -39,7 +39,7 @@ def test_an_abandoned_match_is_over_without_a_winner_and_refuses_play():
     info = room.state_message(None, []).room
     assert info.abandoned is True
     assert room.match is not None and room.match.winner is None
-    for action in (lambda: room.begin_shot(0, BREAK), lambda: room.vote_rematch(1)):
+    for action in (lambda: room.begin_shot(0), lambda: room.vote_rematch(1)):
         with pytest.raises(ActionError) as refused:
             action()
         assert refused.value.code == "abandoned"

@@ -95,7 +95,7 @@ def strike(room: Room, shot: Shot, place: tuple[float, float] | None = None) -> 
     assert seat is not None and room.match is not None
     if place is not None:
         room.place_cue(seat, *place)
-    _, before = room.begin_shot(seat, shot)
+    _, before = room.begin_shot(seat)
     outcome = room.apply_shot(simulate(room.match.game.table, before, shot))
     room.end_shot()
     return outcome

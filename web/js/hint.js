@@ -3,7 +3,9 @@
  * shot on the server (`POST /api/rooms/{room_id}/hint`, docs/protocol.md) and its plan is
  * drawn over the table without being played: where it would put the cue ball, the aim line
  * to the ghost ball and the object ball's path, the cue drawn back by the power, and a
- * caption with the speed and the spin. The plan stays until the balls move.
+ * caption with the power (in % like the aim's own) and the spin. "Try it" hands the plan to
+ * the table, which sets the aim, spin and power and places the cue ball: the player only
+ * has to shoot, or adjust first. The plan stays until the balls move.
  */
 
 import { request } from './net.js';
@@ -48,8 +50,9 @@ export function spinWords(tip) {
 /**
  * One line saying what the plan is.
  * @param {Hint} hint
+ * @param {number} maxSpeed the server's `max_speed`: the power's 100 %
  */
-export function describeHint(hint) {
+export function describeHint(hint, maxSpeed) {
   let what = 'Play safe';
   if (hint.kind === 'pot' && hint.target !== null) {
     what = `Pot the ${hint.target}`;
@@ -62,7 +65,8 @@ export function describeHint(hint) {
   else if (hint.kind === 'break') what = 'Break';
   const odds = hint.kind === 'pot' && hint.chance !== null
     ? ` (${Math.round(hint.chance * 100)} % of the computer's trials went in)` : '';
-  return `${what}${odds}: ${hint.speed.toFixed(1)} m/s, ${spinWords(hint.tip)}.`;
+  const power = Math.round(powerFromSpeed(hint.speed, maxSpeed) * 100);
+  return `${what}${odds}: power ${power} %, ${spinWords(hint.tip)}.`;
 }
 
 /** The button, its caption and the plan on show. */
@@ -72,12 +76,18 @@ export class ShotHint {
    * @param {HTMLElement} caption
    * @param {string} roomId
    * @param {() => string | null} token the seat's token
+   * @param {() => number} maxSpeed the server's `max_speed` now
+   * @param {HTMLButtonElement} tryButton "Try it"
+   * @param {(plan: Hint) => void} onTry set the table up as the plan has it
    */
-  constructor(button, caption, roomId, token) {
+  constructor(button, caption, roomId, token, maxSpeed, tryButton, onTry) {
     this.button = button;
     this.caption = caption;
     this.roomId = roomId;
     this.token = token;
+    this.maxSpeed = maxSpeed;
+    this.tryButton = tryButton;
+    tryButton.addEventListener('click', () => { if (this.plan) onTry(this.plan); });
     /** @type {Hint | null} */
     this.plan = null;
     this.asking = false;
@@ -105,7 +115,8 @@ export class ShotHint {
       const plan = await request('POST', `/api/rooms/${encodeURIComponent(this.roomId)}/hint`,
         { token });
       this.plan = plan;
-      this.caption.textContent = describeHint(plan);
+      this.caption.textContent = describeHint(plan, this.maxSpeed());
+      this.tryButton.hidden = false;
     } catch (e) {
       this.plan = null;
       this.caption.textContent = e instanceof Error ? e.message : String(e);
@@ -118,6 +129,7 @@ export class ShotHint {
   /** Forget the plan (the balls moved). */
   clear() {
     this.plan = null;
+    this.tryButton.hidden = true;
     this.caption.hidden = true;
     this.caption.textContent = '';
   }

@@ -218,6 +218,11 @@ export const memory = {
   name: () => store?.getItem('pool.name') ?? '',
   /** @param {string} n */
   setName: (n) => store?.setItem('pool.name', n),
+  /** A name typed in the lobby and not yet saved to the profile (saved on the next page). */
+  pendingName: () => store?.getItem('pool.pendingName') ?? '',
+  /** @param {string} n '' once saved */
+  setPendingName: (n) => (n ? store?.setItem('pool.pendingName', n)
+    : store?.removeItem('pool.pendingName')),
   muted: () => store?.getItem('pool.muted') === '1',
   /** @param {boolean} m */
   setMuted: (m) => store?.setItem('pool.muted', m ? '1' : '0'),

@@ -42,8 +42,13 @@ export class TableCanvas {
   layout(table) {
     if (!table) return false;
     if (table !== this.table) { this.table = table; this.key = ''; }
-    const w = Math.max(50, this.wrap.clientWidth);
-    const h = Math.max(50, this.wrap.clientHeight);
+    // The wrap's padding (a phone's strip under the table for the aim's words and fine
+    // aim: style.css) is kept free of the table.
+    const pad = getComputedStyle(this.wrap);
+    const w = Math.max(50, this.wrap.clientWidth - parseFloat(pad.paddingLeft || '0')
+      - parseFloat(pad.paddingRight || '0'));
+    const h = Math.max(50, this.wrap.clientHeight - parseFloat(pad.paddingTop || '0')
+      - parseFloat(pad.paddingBottom || '0'));
     this.dpr = window.devicePixelRatio || 1;
     const key = `${w}x${h}@${this.dpr}`;
     if (key !== this.key) {

@@ -246,6 +246,7 @@ export function renderHud(state, now) {
   conn.className = `conn ${state.connection}`;
   setText($('role'), state.me.role === 'player' ? `seat ${(state.me.seat ?? 0) + 1}` : 'spectator');
   renderRematch(state);
+  renderWaysOn(state);
   renderActions(state);
   renderWinner(winner);
   const error = state.error && now - state.error.at < 4 ? state.error.message : '';
@@ -407,6 +408,21 @@ function renderRematch(state) {
 }
 
 /**
+ * The ways on from a finished game, next to Rematch: a new opponent by Play now (the same
+ * game when it is ranked, else 8-ball), and the lobby.
+ * @param {import('./state.js').RoomState} state
+ */
+function renderWaysOn(state) {
+  const ended = state.phase === 'over' || Boolean(state.room?.abandoned);
+  const game = state.room?.game === 'nine_ball' ? 'nine_ball' : 'eight_ball';
+  const again = /** @type {HTMLAnchorElement} */ ($('new-opponent'));
+  const href = `/?playnow=${game}`;
+  if (again.getAttribute('href') !== href) again.setAttribute('href', href);
+  setHidden(again, !ended);
+  setHidden($('end-lobby'), !ended);
+}
+
+/**
  * The pocketed balls, per player once the groups are decided (8-ball), the 8 apart.
  * @param {import('./state.js').RoomState} state
  */
@@ -460,7 +476,10 @@ export function renderAway(state, now, graceAt) {
     .map((g) => {
       const name = playerName(state, g.seat) ?? `Player ${g.seat + 1}`;
       const left = countdown(g.remaining - (now - graceAt));
-      return `${name} left the table · ${left} to come back before forfeiting the frame`;
+      // Only a player who was here can have left (an older server sends no `left`).
+      return g.left === false
+        ? `Waiting for ${name} to come to the table · ${left} before forfeiting the frame`
+        : `${name} left the table · ${left} to come back before forfeiting the frame`;
     });
   const text = lines.join('\n');
   setText(el, text);

@@ -23,7 +23,7 @@ if TYPE_CHECKING:
 else:
 
     @intrinsic
-    def borrowed(typingctx, array):
+    def borrowed(typingctx, array):  # noqa: ARG001 (numba's intrinsic signature)
         """`array` as an ownerless view (same data, shape and strides)."""
         if not isinstance(array, types.Array):
             return None
@@ -42,4 +42,4 @@ def _ownerless_view(context, builder, signature, args):
     view.data = source.data
     view.shape = source.shape
     view.strides = source.strides
-    return view._getvalue()
+    return view._getvalue()  # noqa: SLF001 (numba's own way to hand the struct back)

@@ -70,11 +70,6 @@ def transition_time(state, vx, vy, wx, wy, p):
     return math.inf
 
 
-@njit(cache=True)
-def ball_transition_time(vel, w, st, i, p):
-    return transition_time(st[i], vel[i, 0], vel[i, 1], w[i, 0], w[i, 1], p)
-
-
 # Inlined into the tick loop (see `tick.run_ticks`).
 @njit(cache=True, inline="always")
 def advance(pos, vel, w, st, phase, n, dt, p):

@@ -183,9 +183,9 @@ def run_ticks(
                     # A Zeno loop: e.g. a spinning ball pressed against a still one collides
                     # again at once, forever. Stop the balls of this event so the shot ends.
                     n_ev = _distinct(events, first_ev, n_ev)
-                    n_ev = _halt(vel, w, st, a, now, events, n_ev, radius)
+                    n_ev = _halt(vel, w, st, a, now, events, n_ev)
                     if kind == EV_BALL:
-                        n_ev = _halt(vel, w, st, b, now, events, n_ev, radius)
+                        n_ev = _halt(vel, w, st, b, now, events, n_ev)
                     stalled = True
                     break
                 continue
@@ -208,7 +208,7 @@ def run_ticks(
             stalls += 1
         if frame_pos is not None:
             frame_pos[ticks] = pos
-            cels_of(phase, st, frame_cels[ticks], p)
+            cels_of(phase, frame_cels[ticks], p)
             for i in range(n):
                 frame_on[ticks, i] = st[i] != POCKETED
         ticks += 1
@@ -238,7 +238,7 @@ def _distinct(events, start, n_ev):
 
 
 @njit(cache=True)
-def _halt(vel, w, st, i, now, events, n_ev, radius):
+def _halt(vel, w, st, i, now, events, n_ev):
     """Bring ball i to rest (keeping its spin about the vertical) and record it."""
     if st[i] != SLIDING and st[i] != ROLLING:
         return n_ev
@@ -259,7 +259,7 @@ def any_moving(st):
 
 
 @njit(cache=True)
-def cels_of(phase, st, out, p):
+def cels_of(phase, out, p):
     n_cels = int(p[P_CELS])
     two_pi = 2.0 * math.pi
     for i in range(phase.shape[0]):
@@ -310,11 +310,11 @@ def run_to_rest_kernel(
     while ticks < max_ticks and any_moving(st):
         if frames and ticks == cap:
             cap *= 2
-            frame_pos = _grown(frame_pos, cap)
-            frame_cels = _grown(frame_cels, cap)
-            frame_on = _grown(frame_on, cap)
+            frame_pos = grown(frame_pos, cap)
+            frame_cels = grown(frame_cels, cap)
+            frame_on = grown(frame_on, cap)
         if events.shape[0] - n_ev <= MAX_EVENTS_PER_TICK + 64:
-            events = _grown(events, 2 * events.shape[0])
+            events = grown(events, 2 * events.shape[0])
         # Two calls, not one with chosen arguments: numba types the frames' arrays and
         # their absence (None) as two versions of run_ticks, which cannot share a call.
         if frames:
@@ -388,7 +388,7 @@ def settle_kernel(
 
 
 @njit(cache=True, nogil=True)
-def _grown(a, rows):
+def grown(a, rows):
     out = np.empty((rows,) + a.shape[1:], dtype=a.dtype)
     out[: a.shape[0]] = a
     return out

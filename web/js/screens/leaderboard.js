@@ -1,7 +1,7 @@
 /**
  * The leaderboard (`/leaderboard?game=eight_ball|nine_ball`): rank, name, rating shown as
  * rating − 2·RD (the rating the player is very likely above), games; provisional players
- * listed apart, unranked.
+ * listed after them, their rating marked "?" and explained, without a rank.
  */
 
 import { players, RANKED_GAMES, gameName } from '../players.js';
@@ -21,8 +21,9 @@ function el(tag, attrs = {}, text = '') {
 /**
  * @param {any[]} rows standings
  * @param {string} testid
+ * @param {boolean} [provisional] marked "?" (no rank yet)
  */
-function standingsTable(rows, testid) {
+function standingsTable(rows, testid, provisional = false) {
   const table = el('table', { class: 'standings', 'data-testid': testid });
   const header = el('tr');
   for (const h of ['#', 'Player', 'Rating', 'Games']) header.append(el('th', {}, h));
@@ -33,7 +34,9 @@ function standingsTable(rows, testid) {
     who.append(el('a', { href: `/p/${encodeURIComponent(row.player_id)}`,
       'data-testid': 'standing-name' }, row.name));
     tr.append(el('td', {}, row.rank === null ? '–' : String(row.rank)), who,
-      el('td', { 'data-testid': 'standing-rating' }, String(Math.round(row.rating))),
+      el('td', { 'data-testid': 'standing-rating',
+        ...(provisional ? { title: 'Provisional: too few recent ranked games to rank' } : {}) },
+      `${Math.round(row.rating)}${provisional ? '?' : ''}`),
       el('td', {}, String(row.games)));
     table.append(tr);
   }
@@ -61,12 +64,19 @@ export async function startLeaderboard() {
   root.replaceChildren(nav, panel);
   try {
     const board = await players.leaderboard(game);
-    panel.append(standingsTable(board.ranked, 'leaderboard-ranked'));
-    if (!board.ranked.length) panel.append(el('p', { class: 'muted' }, 'Nobody ranked yet.'));
+    const ranked = board.ranked.length, waiting = board.provisional.length;
+    if (ranked) panel.append(standingsTable(board.ranked, 'leaderboard-ranked'));
+    else {
+      panel.append(el('p', { class: 'muted', 'data-testid': 'leaderboard-ranked' }, waiting
+        ? 'No rank yet for anyone: every player so far is provisional (below).'
+        : 'Nobody has played a ranked game yet: press Play now in the lobby.'));
+    }
     const apart = el('section', { class: 'panel' });
-    apart.append(el('h2', {}, 'Provisional'),
-      el('p', { class: 'muted small' }, 'Too few recent ranked games to rank yet.'),
-      standingsTable(board.provisional, 'leaderboard-provisional'));
+    apart.append(el('h2', {}, `Provisional (${waiting})`),
+      el('p', { class: 'muted small', 'data-testid': 'provisional-why' },
+        'A rating marked ? is provisional: its deviation is still above 110, after too few'
+        + ' recent ranked games (or a long absence). It gets a rank after a few more games.'),
+      standingsTable(board.provisional, 'leaderboard-provisional', true));
     root.append(apart);
   } catch (e) {
     panel.append(el('p', { class: 'error', role: 'alert' },

@@ -1,13 +1,16 @@
 /**
- * The lobby (`/`): your name, creating a table, the open tables to join or watch and the
- * finished matches to watch again. Lists refresh every few seconds while the tab is shown.
+ * The lobby (`/`): three equal ways to play (Play now, the computer, a friend by link) and
+ * practice, the open tables to join or watch and the finished matches to watch again.
+ * Everyone plays under their profile's name (identity.js): the name field is prefilled
+ * with it and a new name typed there renames the profile. Lists refresh every few seconds
+ * while the tab is shown.
  */
 
 import { api, memory, request } from '../net.js';
 import { DEFAULT_LIMITS, readLimits } from '../limits.js';
 import { $, $input, $select, applyInputLimits, renderRooms, renderHistory } from '../ui.js';
 import { mountPlayNow } from './playnow.js';
-import { players } from '../players.js';
+import { bindNameField, settleName } from '../identity.js';
 
 const REFRESH_EVERY = 3000; // ms between two refreshes of the lists
 const HISTORY_SHOWN = 10; // finished matches listed
@@ -19,19 +22,20 @@ export function startLobby() {
   api.limits().then((limits) => applyInputLimits(readLimits(limits)), () => {});
   // The computer's levels, as the server names them (weakest first).
   api.computerLevels().then(({ levels }) => {
-    const select = $select('opponent');
+    const select = $select('computer-level');
     for (const level of levels) {
       const option = document.createElement('option');
       option.value = level;
-      option.textContent = `The computer: ${level}`;
+      option.textContent = level[0].toUpperCase() + level.slice(1);
       select.append(option);
     }
   }, () => {});
 
   const nameEl = $input('name');
-  nameEl.value = memory.name();
-  mountPlayNow($('playnow'));
-  nameEl.addEventListener('input', () => memory.setName(nameEl.value.trim()));
+  bindNameField(nameEl, true); // saved to the profile as typed
+  // `/?playnow=<game>`: "New opponent" at the end of a game queues at once.
+  const again = new URLSearchParams(location.search).get('playnow');
+  mountPlayNow($('playnow'), () => settleName(nameEl), again);
   /** @param {string} msg */
   const showError = (msg) => { $('lobby-error').textContent = msg; };
   // Practice is one rack alone: no race, no clock to set.
@@ -40,18 +44,18 @@ export function startLobby() {
     const practice = gameEl.value === 'practice';
     $input('race-to').disabled = practice;
     $select('shot-clock-select').disabled = practice;
-    $select('opponent').disabled = practice;
-    // Ranked: two people at 8-ball or 9-ball (never practice, never the computer).
-    $input('ranked-table').disabled = practice || Boolean($select('opponent').value);
+    // Ranked: two people at 8-ball or 9-ball (never practice).
+    $input('ranked-table').disabled = practice;
   };
-  $select('opponent').addEventListener('change', showGameOptions);
   gameEl.addEventListener('change', showGameOptions);
   showGameOptions();
-  const needName = () => {
-    const name = nameEl.value.trim();
-    if (!name) { showError('Enter your name first.'); nameEl.focus(); return null; }
-    memory.setName(name);
-    return name;
+  /** The name to play under (the profile's, renamed first when changed here), or null. */
+  const needName = async () => {
+    try { return await settleName(nameEl); } catch (e) {
+      showError(errorText(e));
+      nameEl.focus();
+      return null;
+    }
   };
   /**
    * @param {string} roomId
@@ -63,27 +67,39 @@ export function startLobby() {
     memory.setSeat(roomId, { seat: seat.seat, token: seat.token, name: seat.name });
     location.assign(`/r/${roomId}`);
   };
-  $('create-room').addEventListener('click', async () => {
-    const name = needName();
+  /**
+   * Open a table and take its first seat.
+   * @param {{game: string, raceTo: number, shotClock?: number, listed: boolean,
+   *   opponent?: string, ranked?: boolean}} t
+   */
+  const openTable = async (t) => {
+    const name = await needName();
     if (!name) return;
+    try {
+      const room = await api.createRoom(t.game, t.raceTo, t.shotClock, t.listed, t.opponent,
+        t.ranked);
+      await joinAndGo(room.room_id, name, t.ranked);
+    } catch (e) { showError(errorText(e)); }
+  };
+  $('create-room').addEventListener('click', () => {
     // Kept within the field's own min/max (index.html), which is what the form offers.
     const raceEl = $input('race-to');
     const lo = Number(raceEl.min) || 1;
     const raceTo = Math.min(Number(raceEl.max) || lo, Math.max(lo, Number(raceEl.value) || lo));
-    try {
-      const opponent = $select('opponent').value || undefined;
-      // A game against the computer is nobody else's to join: keep it out of the lobby.
-      const listed = !$input('private-table').checked && !opponent;
-      const practice = $select('game').value === 'practice';
-      const shotClock = practice ? undefined : Number($select('shot-clock-select').value);
-      const ranked = !$input('ranked-table').disabled && $input('ranked-table').checked;
-      if (ranked) await players.me(); // a ranked table needs the creator's profile
-      const room = await api.createRoom($select('game').value, practice ? 1 : raceTo,
-        Number.isFinite(shotClock) ? shotClock : undefined, listed, practice ? undefined : opponent,
-        ranked);
-      await joinAndGo(room.room_id, name, ranked);
-    } catch (e) { showError(errorText(e)); }
+    const practice = $select('game').value === 'practice';
+    const shotClock = practice ? undefined : Number($select('shot-clock-select').value);
+    openTable({ game: $select('game').value, raceTo: practice ? 1 : raceTo,
+      shotClock: Number.isFinite(shotClock) ? shotClock : undefined,
+      listed: !$input('private-table').checked,
+      ranked: !$input('ranked-table').disabled && $input('ranked-table').checked });
   });
+  // A game against the computer is nobody else's to join: kept out of the lobby.
+  $('play-computer').addEventListener('click', () => openTable({
+    game: $select('computer-game').value, raceTo: Number($select('computer-race-to').value),
+    shotClock: Number($select('computer-clock').value), listed: false,
+    opponent: $select('computer-level').value || 'beginner' }));
+  $('practice').addEventListener('click', () => openTable({ game: 'practice', raceTo: 1,
+    listed: true }));
   const refresh = async () => {
     try {
       const { rooms } = await api.listRooms();
@@ -95,7 +111,7 @@ export function startLobby() {
         onJoin: async (id) => {
           // A ranked table asks for the player's agreement: its page's join dialog does.
           if (open.some((r) => r.room_id === id && r.ranked)) { location.assign(`/r/${id}`); return; }
-          const name = needName();
+          const name = await needName();
           if (!name) return;
           try { await joinAndGo(id, name); } catch (e) { showError(errorText(e)); refresh(); }
         },

@@ -5,8 +5,9 @@
  * a while alone it offers the computer at the level nearest the player's rating.
  */
 
-import { memory } from '../net.js';
+import { api, memory } from '../net.js';
 import { players, RANKED_GAMES, gameName } from '../players.js';
+import { onName, profileName } from '../identity.js';
 
 const POLL_WAIT = 25; // s the server may hold a long-poll
 const RETRY_AFTER = 2000; // ms before polling again after a failed request
@@ -26,8 +27,11 @@ function el(tag, attrs = {}, text = '') {
 /**
  * Build the Play now panel inside `root`.
  * @param {HTMLElement} root
+ * @param {() => Promise<string>} settleName the name to play under, saved to the profile
+ *   first (throws one sentence when it is refused)
+ * @param {string | null} [again] a game to queue for at once ("New opponent" after a game)
  */
-export function mountPlayNow(root) {
+export function mountPlayNow(root, settleName, again = null) {
   const game = /** @type {HTMLSelectElement} */ (el('select', { 'data-testid': 'playnow-game' }));
   for (const [value, label] of RANKED_GAMES) game.append(el('option', { value }, label));
   const label = el('label', { class: 'field' }, 'Game');
@@ -69,7 +73,8 @@ export function mountPlayNow(root) {
       // The wait counts up here between two answers of the long-poll.
       const since = performance.now() - s.waited * 1000;
       const tell = () => {
-        status.textContent = `Looking for a ${gameName(s.game)} opponent rated `
+        const game = gameName(s.game);
+        status.textContent = `Looking for ${game.startsWith('8') ? 'an' : 'a'} ${game} opponent rated `
           + `${Math.round(s.rating)} ± ${Math.round(s.window)}… `
           + `(${Math.round((performance.now() - since) / 1000)} s)`;
       };
@@ -98,22 +103,47 @@ export function mountPlayNow(root) {
   /** @param {unknown} e */
   const fail = (e) => { status.textContent = e instanceof Error ? e.message : String(e); };
 
-  play.addEventListener('click', async () => {
+  const playNow = async () => {
     try {
+      await settleName();
       if (show(await players.playNow(game.value))) poll();
     } catch (e) { fail(e); }
-  });
+  };
+  play.addEventListener('click', playNow);
   cancel.addEventListener('click', async () => {
     try { show(await players.leaveQueue()); } catch (e) { fail(e); }
   });
   computer.addEventListener('click', async () => {
     try { show(await players.playComputer()); } catch (e) { fail(e); }
   });
-  // The profile first (a first visit makes it and its cookie); then, back in the lobby
-  // while still queued (another tab, a reload), pick the wait up again.
-  players.me().then((profile) => {
-    name = profile.name;
+  onName((n) => {
+    name = n;
     who.textContent = `Playing as ${name} · `;
-    return players.queueStatus(0).then((s) => { if (show(s)) poll(); });
+  });
+  // The profile first (a first visit makes it and its cookie); then, back in the lobby
+  // while still queued (another tab, a reload), pick the wait up again, or go to a match
+  // still on. A finished match is never gone back to: the lobby stays the lobby.
+  profileName().then(async () => {
+    if (again && RANKED_GAMES.some(([g]) => g === again)) {
+      game.value = again;
+      history.replaceState(null, '', '/');
+      await playNow();
+      return;
+    }
+    const s = await players.queueStatus(0);
+    if (s.status === 'matched' && !(await stillOn(s.room?.room_id))) return;
+    if (show(s)) poll();
   }).catch(() => { status.textContent = 'Your profile could not be loaded.'; });
+}
+
+/**
+ * Whether a Play now room is still to be played (not finished, not gone).
+ * @param {string | undefined} roomId
+ */
+async function stillOn(roomId) {
+  if (!roomId) return false;
+  try {
+    const room = await api.getRoom(roomId);
+    return room.status !== 'finished';
+  } catch { return false; }
 }

@@ -1,12 +1,13 @@
 /**
- * A player's profile: `/profile` (your own: the name can be changed) or `/p/{player_id}`
+ * A player's profile: `/profile` (your own: the name can be changed, and is
+ * used at every table from then on) or `/p/{player_id}`
  * (anyone's). Ratings per game (provisional ones marked), the recent ranked matches with
  * their rating change, and every recent match in the player's seats, each with a link to
  * its replay. Every name is written as text, never as markup.
  */
 
 import { players, RANKED_GAMES, gameName, ratingText } from '../players.js';
-import { memory } from '../net.js';
+import { bindNameField, myProfile, settleName } from '../identity.js';
 
 /**
  * @param {string} tag
@@ -28,7 +29,7 @@ export async function startProfile(playerId) {
   const error = el('p', { class: 'error', role: 'alert', 'data-testid': 'profile-error' });
   let profile;
   try {
-    profile = playerId === null ? await players.me() : await players.get(playerId);
+    profile = playerId === null ? await myProfile() : await players.get(playerId);
   } catch (e) {
     root.replaceChildren(el('a', { href: '/' }, '← Lobby'), error);
     error.textContent = e instanceof Error ? e.message : String(e);
@@ -61,12 +62,12 @@ function headPanel(profile, error) {
     const row = el('div', { class: 'row' });
     row.append(field, save);
     head.append(row);
+    bindNameField(input); // its limit shown while typing, a cut paste said
     save.addEventListener('click', async () => {
       try {
-        const renamed = await players.rename(input.value);
-        title.textContent = renamed.name;
-        input.value = renamed.name;
-        memory.setName(renamed.name);
+        const name = await settleName(input);
+        title.textContent = name;
+        input.value = name;
         error.textContent = '';
       } catch (e) { error.textContent = e instanceof Error ? e.message : String(e); }
     });

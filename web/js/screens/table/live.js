@@ -20,7 +20,7 @@ import {
   URGENT_AT,
 } from '../../ui.js';
 import { Coach } from '../../coach.js';
-import { ShotHint } from '../../hint.js';
+import { ShotHint, powerFromSpeed } from '../../hint.js';
 import { TableView } from '../../tableview.js';
 import {
   drawHandArea, drawOwnAim, drawRemoteAim, drawCall, drawClock,
@@ -55,7 +55,11 @@ export class LiveTable {
     this.aim = new AimController();
     this.coach = new Coach($('coach'), $('coach-ok'));
     this.hint = new ShotHint(/** @type {HTMLButtonElement} */ ($('hint')), $('hint-text'),
-      roomId, () => this.seatToken());
+      roomId, () => this.seatToken(), () => this.limits.max_speed,
+      /** @type {HTMLButtonElement} */ ($('hint-try')), (plan) => this.tryPlan(plan));
+    /** @type {number | null} the power a tried hint set, for its Shoot button */
+    this.triedPower = null;
+    $('hint-shoot').addEventListener('click', () => this.shootTried());
     /** @type {PointerAction[]} */
     this.inputQueue = [];
     /** @type {Point | null} where we asked to place the cue ball */
@@ -110,6 +114,38 @@ export class LiveTable {
    */
   nudge(delta) {
     if (this.situation().myTurn && this.aim.mode !== 'placing') this.aim.nudge(delta);
+  }
+
+  /**
+   * "Try it": the table set up as the hint has it (the cue ball placed, the aim, spin and
+   * power set), for the player to shoot with one press or to adjust first.
+   * @param {import('../../hint.js').Hint} plan
+   */
+  tryPlan(plan) {
+    if (!this.situation().myTurn) return;
+    if (plan.place) {
+      const [x, y] = plan.place;
+      this.pendingCue = { x, y };
+      this.send({ type: 'place_cue', x, y });
+    }
+    this.aim.reset();
+    this.aim.angle = plan.angle;
+    this.aim.tip = clampTip(plan.tip[0], plan.tip[1], this.limits.max_tip);
+    this.aim.power = powerFromSpeed(plan.speed, this.limits.max_speed);
+    this.aim.dirty = true;
+    this.triedPower = this.aim.power;
+  }
+
+  /** The Shoot button of a tried hint: the aim as it is now, at the hint's power. */
+  shootTried() {
+    if (this.triedPower === null || !this.situation().myTurn) return;
+    this.aim.power = this.triedPower;
+    const shot = this.aim.shot(this.limits);
+    this.triedPower = null;
+    if (!this.send(shot)) return;
+    this.shotSentAt = clock();
+    this.aim.dirty = false;
+    this.coach.done();
   }
 
   // ---- in: messages ---------------------------------------------------------------------
@@ -189,6 +225,7 @@ export class LiveTable {
   shotStarts() {
     this.shotsSeen += 1;
     this.hint.clear();
+    this.triedPower = null;
     this.shotSentAt = -Infinity;
     this.aim.reset();
     this.remoteCue = null;
@@ -423,6 +460,11 @@ export class LiveTable {
     setHidden($('fine-aim'), !(sit.myTurn && aim.mode !== 'placing' && !sit.requiresCall));
     this.coach.show(sit.myTurn && aim.mode !== 'placing');
     this.hint.offer(sit.myTurn && state.room?.game === 'practice');
+    const shoot = $('hint-shoot');
+    const tried = this.triedPower !== null && this.hint.plan !== null && sit.myTurn
+      && aim.mode === 'idle';
+    setHidden(shoot, !tried);
+    if (tried) setText(shoot, `Shoot · ${Math.round(/** @type {number} */ (this.triedPower) * 100)} %`);
     const banner = $('frame-banner');
     const showFrame = now < this.frameBanner.until && state.phase !== 'over';
     if (showFrame) setText(banner, this.frameBanner.text);

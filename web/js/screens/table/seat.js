@@ -1,12 +1,12 @@
 /**
  * Joining a seat or watching: a visitor without a seat at a table with a free one is asked
- * (name, join or watch); `?watch` in the address only watches. The socket watches while the
+ * to join or watch (under the profile's name, prefilled); `?watch` in the address only watches. The socket watches while the
  * visitor decides and reconnects with the seat's token once seated.
  */
 
 import { api, memory } from '../../net.js';
-import { players as playerApi } from '../../players.js';
 import { $, $input } from '../../ui.js';
+import { bindNameField, profileName, settleName } from '../../identity.js';
 
 /** @type {Record<string, string>} */
 const GAME_NAMES = { eight_ball: '8-ball', nine_ball: '9-ball', practice: 'Practice' };
@@ -26,19 +26,17 @@ export function chooseSeat(roomId, room, socket) {
   if (!free || watchOnly) return;
   const dialog = $('join-dialog');
   const nameEl = $input('join-name');
-  nameEl.value = memory.name();
+  bindNameField(nameEl); // the profile's name; a new one typed here renames the profile
   $('join-info').textContent = invitation(room, players.filter(Boolean));
   // Joining a ranked table is the player's agreement to be rated.
   $('join-seat').textContent = room.ranked ? 'Join the ranked game' : 'Join the game';
   dialog.hidden = false;
   $('watch-only').onclick = () => { dialog.hidden = true; };
   $('join-seat').onclick = async () => {
-    const name = nameEl.value.trim();
-    if (!name) { $('join-error').textContent = 'Enter your name first.'; return; }
-    memory.setName(name);
     try {
+      const name = await settleName(nameEl);
       // A ranked seat needs a profile: made here when the link is the first visit.
-      if (room?.ranked) await playerApi.me();
+      if (room?.ranked) await profileName();
       const seat = await api.join(roomId, name, Boolean(room?.ranked));
       memory.setSeat(roomId, { seat: seat.seat, token: seat.token, name: seat.name });
       dialog.hidden = true;

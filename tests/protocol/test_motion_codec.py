@@ -1,9 +1,9 @@
-"""The `motion` message: a shot traced through the engine's own tick, thinned, packed.
+"""The `motion` message: a shot traced by the engine (tests/engine/test_trace.py), packed.
 
-The tracer must follow the engine exactly (its tick ends are the engine's frames, bit for
-bit), put a knot at every contact of a ball, and the bytes must say what docs/protocol.md
-says they say (the decoder here, `decode_motion`, is checked against the tracer's own
-numbers; the web client's decoder is checked against an encoder written from the doc).
+`run_traced` must leave the engine's result exact, every contact must be drawn where the
+engine has it, and the bytes must say what docs/protocol.md says they say (the decoder
+here, `decode_motion`, is checked against the tracer's own numbers; the web client's
+decoder is checked against an encoder written from the doc).
 """
 
 from __future__ import annotations
@@ -25,6 +25,7 @@ from server.protocol.motion import (
 )
 from server.protocol.plan import motion_messages, motion_text, stored_motion
 from tests.support.games import BREAK, EIGHT_BALL
+from tests.support.results import assert_same_result
 
 TABLE = Table.pool("9ft")
 
@@ -47,14 +48,6 @@ def at(track: dict, t: float) -> tuple[float, float]:
     return x, track["y"][i] + (track["y"][i + 1] - track["y"][i]) * f
 
 
-def test_the_tracer_follows_the_engine_tick_for_tick():
-    result, tracks, _ = traced(EIGHT_BALL, BREAK)
-    assert tracks.ticks == len(result.frames)
-    ends = np.searchsorted(tracks.times, (np.arange(len(result.frames)) + 1) / 120 - 1e-12)
-    assert np.array_equal(tracks.positions[ends], result.frames.positions)
-    assert np.array_equal(tracks.on_table[ends], result.frames.on_table)
-
-
 @pytest.mark.parametrize(
     ("seed", "shot"),
     [(EIGHT_BALL, BREAK), (28, Shot(-1.008541877928577, 4.930159020213607)), (3, Shot(2.0, 6.0))],
@@ -65,25 +58,9 @@ def test_one_pass_gives_the_engines_result_bit_for_bit(seed, shot):
     balls = rack("eight_ball", TABLE, seed=seed)
     expected = simulate(TABLE, balls, shot)
     motion = ShotInMotion(TABLE, balls, shot)
-    run_traced(TABLE, motion)
+    run_traced(motion)
     got = motion.result()
-    assert got.frames.positions.tobytes() == expected.frames.positions.tobytes()
-    assert np.array_equal(got.frames.cels, expected.frames.cels)
-    assert np.array_equal(got.frames.on_table, expected.frames.on_table)
-    assert got.events == expected.events
-    assert got.final.to_dict() == expected.final.to_dict()
-    assert got.stalled_ticks == expected.stalled_ticks
-
-
-def test_a_stalling_cluster_is_traced_too():
-    """A rack seed and shot whose cluster stalls a tick (5,000 contacts, plus rests): the
-    tracer's per-tick buffers hold it (they once overflowed and corrupted the heap)."""
-    balls = rack("eight_ball", TABLE, seed=28)
-    shot = Shot(-1.008541877928577, 4.930159020213607)
-    result = simulate(TABLE, balls, shot)
-    assert result.stalled_ticks > 0
-    tracks = trace(TABLE, balls, shot)
-    assert tracks.ticks == len(result.frames)
+    assert_same_result(got, expected)
 
 
 def test_every_contact_is_drawn_where_the_engine_has_it():

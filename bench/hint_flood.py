@@ -2,7 +2,7 @@
 person's shot, quiet and while other addresses keep asking for hints (the real planners,
 `POOL_COMPUTER_WORKERS`).
 
-    python -m bench.hints [--turns 4] [--addresses 20] [--workers 1]
+    python -m bench.hint_flood [--turns 4] [--addresses 20] [--workers 1]
 
 Each turn: Ana (seat 0) plays a miss, the time from her shot's result to the computer's
 `shot_result` is one sample. The flood: one practice table per loopback address
