@@ -222,9 +222,12 @@ def test_on_a_phone_nothing_covers_the_cloth_or_a_pocket(base_url, browser, view
         page.get_by_test_id("play-computer").tap()
         page.wait_for_url(TABLE_PAGE)
         wait_ready(page, "aiming")
+        bed = table_box(page, 0.1)  # the pockets' mouths and the rails round the cloth
+        coach = page.get_by_test_id("first-shot-hint")
+        expect(coach).to_be_visible()
+        assert not overlaps(coach.bounding_box(), bed), "the first-shot coach"
         page.get_by_test_id("first-shot-hint-ok").tap()
         expect(page.get_by_test_id("aim-state")).to_be_visible()  # "Ball in hand…"
-        bed = table_box(page, 0.1)  # the pockets' mouths and the rails round the cloth
         shown = ["aim-state", "aim-left", "aim-right"]
         for testid in shown:
             box = page.get_by_test_id(testid).bounding_box()
