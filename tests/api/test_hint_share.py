@@ -141,6 +141,7 @@ async def computer_shoots(address: str) -> None:
                     await ws.send(json.dumps({"type": "shoot", "angle": 2.0, "speed": 3.0}))
 
 
+@pytest.mark.slow  # many seconds: not in scripts/test --quick
 def test_a_hint_flood_never_puts_more_than_one_hint_ahead_of_the_computer(
     address: str, planner: OnePlanner
 ):
