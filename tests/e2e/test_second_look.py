@@ -68,7 +68,9 @@ def test_the_computer_can_be_given_a_longer_race_and_a_clock(base_url, new_page)
     assert (room["game"], room["race_to"], room["shot_clock"]) == ("nine_ball", 3, 30)
 
 
-def test_two_strangers_play_now_and_both_get_back_to_the_lobby(base_url, new_page):
+def seated_by_play_now(base_url: str, new_page) -> tuple[Page, Page]:
+    """Two strangers press Play now for 8-ball, one after the other, and are seated at one
+    table, aiming."""
     ana, ben = new_page(), new_page()
     for page in (ana, ben):
         page.goto(base_url + "/")
@@ -80,6 +82,11 @@ def test_two_strangers_play_now_and_both_get_back_to_the_lobby(base_url, new_pag
     for page in (ana, ben):
         page.wait_for_url(TABLE_PAGE)
         wait_ready(page, "aiming")
+    return ana, ben
+
+
+def test_two_strangers_play_now_and_both_get_back_to_the_lobby(base_url, new_page):
+    ana, ben = seated_by_play_now(base_url, new_page)
     names = {profile_name(ana), profile_name(ben)}
     hud = {ana.get_by_test_id(f"player-{s}").inner_text() for s in (0, 1)}
     assert all(any(n in h for h in hud) for n in names)  # the profiles' names seated
@@ -152,30 +159,33 @@ def test_names_are_refused_in_one_sentence_and_the_field_shows_its_limit(base_ur
     expect(ana.get_by_test_id("name-note")).to_contain_text("cut to 24: the paste had 300")
 
 
+def until_both_have_shot(ana: Page, ben: Page, limit: int = 8) -> None:
+    """Whoever is to play strikes softly at the nearest object ball, until each seat has
+    struck a shot (a match is rated only then)."""
+    struck: set[int] = set()
+    for _ in range(limit):
+        if len(struck) == 2:
+            return
+        wait_ready(ana, "aiming")
+        turn = ana.evaluate("window.__pool.state.match.turn")
+        page = ana if turn == ana.evaluate("window.__pool.state.me.seat") else ben
+        seen = page.evaluate("window.__pool.shotsSeen")
+        cue = page.evaluate("window.__pool.balls.find((b) => b.id === 0)")
+        others = page.evaluate("window.__pool.balls.filter((b) => b.id !== 0)")
+        near = min(others, key=lambda b: (b["x"] - cue["x"]) ** 2 + (b["y"] - cue["y"]) ** 2)
+        aim_and_shoot(page, (near["x"], near["y"]), pull_px=80)
+        wait_for(page, f"window.__pool.shotsSeen > {seen} && !window.__pool.playing")
+        struck.add(turn)
+    raise AssertionError(f"only seats {struck} struck in {limit} shots")
+
+
 def test_the_leaderboard_marks_and_explains_provisional_players(base_url, new_page):
-    """A rated Play now match (one shot, then a concession) puts both players on the
-    8-ball leaderboard, provisional: their ratings marked "?", the mark explained, and no
-    "Nobody ranked yet" over them."""
-    ana, ben = new_page(), new_page()
-    for page in (ana, ben):
-        page.goto(base_url + "/")
-        expect(page.get_by_test_id("play-now")).to_be_visible()
-        page.get_by_test_id("playnow-game").select_option("eight_ball")
-    ana.get_by_test_id("play-now").click()
-    expect(ana.get_by_test_id("playnow-status")).to_contain_text("Looking for")
-    ben.get_by_test_id("play-now").click()
-    for page in (ana, ben):
-        page.wait_for_url(TABLE_PAGE)
-        wait_ready(page, "aiming")
-    breaker = (
-        ana
-        if ana.evaluate("window.__pool.state.match.turn === window.__pool.state.me.seat")
-        else ben
-    )
-    foot = breaker.evaluate("window.__pool.state.table.foot_spot")
-    aim_and_shoot(breaker, (foot[0], foot[1]))
-    wait_for(breaker, "window.__pool.shotsSeen >= 1 && !window.__pool.playing")
-    wait_ready(breaker, "aiming")
+    """A rated Play now match (each seat strikes, then a concession) puts both players on
+    the 8-ball leaderboard, provisional: their ratings marked "?", the mark explained, and
+    no "Nobody ranked yet" over them."""
+    ana, ben = seated_by_play_now(base_url, new_page)
+    until_both_have_shot(ana, ben)
+    wait_ready(ana)
     concede_match(ana)
     names = [profile_name(p) for p in (ana, ben)]
     board = new_page()
