@@ -8,7 +8,7 @@ from __future__ import annotations
 import re
 
 import pytest
-from playwright.sync_api import Page, expect
+from playwright.sync_api import Page, Route, expect
 
 from .helpers import TABLE_PAGE, aim_and_shoot, table_point, wait_for, wait_ready
 
@@ -66,6 +66,42 @@ def test_the_computer_can_be_given_a_longer_race_and_a_clock(base_url, new_page)
     wait_ready(ana, "aiming")
     room = ana.evaluate("window.__pool.state.room")
     assert (room["game"], room["race_to"], room["shot_clock"]) == ("nine_ball", 3, 30)
+
+
+class HeldRequests:
+    """A route handler that holds the requests it sees until `release()`, then lets every
+    later one through."""
+
+    def __init__(self) -> None:
+        self.routes: list[Route] = []
+        self.released = False
+
+    def __call__(self, route: Route) -> None:
+        if self.released:
+            route.continue_()
+        else:
+            self.routes.append(route)
+
+    def release(self) -> None:
+        self.released = True
+        for route in self.routes:
+            route.continue_()
+
+
+def test_play_the_computer_pressed_before_the_profile_came_waits_for_its_name(base_url, new_page):
+    """A quick press, while the profile (and so the name) is still on its way: the table
+    opens under the profile's name once it comes, with no "enter your name"."""
+    ana = new_page()
+    profile = HeldRequests()
+    ana.route("**/api/players/me", profile)
+    ana.goto(base_url + "/")
+    assert profile.routes, "the page asks for its profile"
+    ana.get_by_test_id("play-computer").click()
+    expect(ana.get_by_test_id("lobby-error")).to_have_text("")
+    profile.release()
+    ana.wait_for_url(TABLE_PAGE)
+    wait_ready(ana, "aiming")
+    assert profile_name(ana) in ana.get_by_test_id("player-0").inner_text()
 
 
 def seated_by_play_now(base_url: str, new_page) -> tuple[Page, Page]:

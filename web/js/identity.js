@@ -71,7 +71,7 @@ export function bindNameField(input, save = false) {
   // comes before its paste event).
   input.addEventListener('keydown', () => { cutFrom = 0; });
   let typed = false;
-  input.addEventListener('input', () => { typed = true; }, { once: true });
+  input.addEventListener('input', () => { typed = true; input.dataset.typed = '1'; }, { once: true });
   onName((name) => { if (!typed) { input.value = name; show(); } });
   if (save) saveAsTyped(input);
   // A name typed on the last page and not saved yet (the page was left first) is the one
@@ -108,6 +108,13 @@ function saveAsTyped(input) {
  * @returns {Promise<string>}
  */
 export async function settleName(input) {
+  // Pressed before the profile's name came (nothing typed): that name, once it comes.
+  if (!input.value.trim() && !input.dataset.typed) {
+    try {
+      const current = await profileName();
+      if (!input.value.trim()) input.value = current;
+    } catch { /* no profile: the field's own words below */ }
+  }
   const problem = nameProblem(input.value, limitOf(input));
   if (problem) throw new Error(problem);
   const name = input.value.trim();
