@@ -168,6 +168,13 @@ def test_matches_in_the_players_seats_go_on_the_profile(clocked_client):
     assert clocked_client.get(f"/api/matches/{played['match_id']}").json()["room_id"] == room_id
 
 
+def paired(ana: Visitor, ben: Visitor) -> tuple[dict, dict]:
+    """Ana then Ben press Play now and are paired: each one's seat (`room_id`, `token`)."""
+    play_now(ana)
+    b = play_now(ben)["room"]
+    return ana.call("GET", "/api/playnow").json()["room"], b
+
+
 def play_now(visitor: Visitor, game: str = "eight_ball") -> dict:
     response = visitor.call("POST", "/api/playnow", json={"game": game})
     assert response.status_code == 200, response.text
@@ -282,15 +289,8 @@ def test_the_computer_offered_is_the_level_nearest_the_rating(clocked_client, cl
 
 def test_a_ranked_match_moves_both_ratings_by_glicko2(clocked_client, clock):
     ana, ben = Visitor(clocked_client), Visitor(clocked_client)
-    play_now(ana)
-    b = play_now(ben)["room"]
-    a = ana.call("GET", "/api/playnow").json()["room"]
-    with (
-        connect(clocked_client, a["room_id"], a["token"]) as wa,
-        connect(clocked_client, b["room_id"], b["token"]) as wb,
-    ):
-        receive_until(wa, "state")
-        receive_until(wb, "state")
+    a, b = paired(ana, ben)
+    with at_the_table(clocked_client, a["room_id"], a, b) as (wa, wb):
         both_visit(wa, wb)
         wb.send_json({"type": "concede"})
         over = state_where(wa, lambda s: s["match"]["match_over"])
@@ -350,15 +350,8 @@ def test_a_concession_before_the_other_side_played_is_not_rated(clocked_client):
     """The farm: a fresh profile paired by Play now breaks, the other concedes at once.
     Until each side has had a visit at the table the match is not rated."""
     ana, ben = Visitor(clocked_client), Visitor(clocked_client)
-    play_now(ana)
-    b = play_now(ben)["room"]
-    a = ana.call("GET", "/api/playnow").json()["room"]
-    with (
-        connect(clocked_client, a["room_id"], a["token"]) as wa,
-        connect(clocked_client, b["room_id"], b["token"]) as wb,
-    ):
-        receive_until(wa, "state")
-        receive_until(wb, "state")
+    a, b = paired(ana, ben)
+    with at_the_table(clocked_client, a["room_id"], a, b) as (wa, wb):
         break_rack(wa, wb)
         wb.send_json({"type": "concede"})
         over = state_where(wa, lambda s: s["match"]["match_over"])
@@ -484,9 +477,7 @@ def test_a_hundred_concurrent_play_now_presses_make_fifty_rooms(settings):
 def test_a_ranked_room_brought_back_after_a_restart_is_still_rated(settings, clock):
     with TestClient(app_with(settings, clock=clock.clock)) as client:
         ana, ben = Visitor(client), Visitor(client)
-        play_now(ana)
-        b = play_now(ben)["room"]
-        a = ana.call("GET", "/api/playnow").json()["room"]
+        a, b = paired(ana, ben)
     with TestClient(app_with(settings, clock=clock.clock)) as client:
         ana.client = ben.client = client
         with connect(client, a["room_id"], a["token"]) as wa:

@@ -12,7 +12,7 @@ from server.api.rooms import NO_PROFILE_NAME
 from tests.support.messages import receive_until, state_where
 from tests.support.rooms import connect, create_room
 
-from .test_players import Visitor, play_now
+from .test_players import Visitor, paired, play_now
 
 
 def test_a_play_now_answer_ends_with_its_match(clocked_client):
@@ -87,9 +87,7 @@ def test_only_a_player_who_was_at_the_table_has_left_it(clocked_client):
     """Play now seats both at once: until Ben's page connects he is away but has not left;
     once he was there and dropped, he has."""
     ana, ben = Visitor(clocked_client), Visitor(clocked_client)
-    play_now(ana)
-    b = play_now(ben)["room"]
-    a = ana.call("GET", "/api/playnow").json()["room"]
+    a, b = paired(ana, ben)
     with connect(clocked_client, a["room_id"], a["token"]) as wa:
         first = receive_until(wa, "state")[-1]["grace"]
         assert [(g["seat"], g["left"]) for g in first] == [(b["seat"], False)]
