@@ -1,0 +1,24 @@
+"""Sign-in attempts, limited per address and per account name (`limits`, moving windows):
+guessing one account's password from many addresses, or many accounts' from one, is slowed
+alike. A name that has no account is counted like one, so the limit tells nothing either.
+Counted in this process (like the other per-client quotas): a cluster of N processes
+allows up to N times as many, still bounded."""
+
+from __future__ import annotations
+
+from limits import parse
+from limits.storage import MemoryStorage
+from limits.strategies import MovingWindowRateLimiter
+
+
+class SignInLimits:
+    def __init__(self, per_address: str, per_account: str) -> None:
+        self._limiter = MovingWindowRateLimiter(MemoryStorage())
+        self._address = parse(per_address)
+        self._account = parse(per_account)
+
+    def allow(self, address: str, name_key: str) -> bool:
+        """Count one attempt; False once either its address or its name is over."""
+        by_address = self._limiter.hit(self._address, "sign-in address", address)
+        by_account = self._limiter.hit(self._account, "sign-in account", name_key)
+        return by_address and by_account
