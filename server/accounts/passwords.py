@@ -52,9 +52,15 @@ class Hasher:
 
     def __init__(self, hasher: PasswordHasher | None = None) -> None:
         self._hasher = hasher or PasswordHasher()
-        # Checked against when a name has no password, so that it is answered as slowly
-        # as a wrong password (no telling which names exist).
-        self._dummy = self._hasher.hash("not a password anyone has")
+        self._dummy: str | None = None
+
+    @property
+    def dummy(self) -> str:
+        """Checked against when a name has no password, so that it is answered as slowly
+        as a wrong password (no telling which names exist). Made on first use."""
+        if self._dummy is None:
+            self._dummy = self._hasher.hash("not a password anyone has")
+        return self._dummy
 
     def hash(self, password: str) -> str:
         return self._hasher.hash(password)
@@ -62,7 +68,7 @@ class Hasher:
     def verify(self, stored: str | None, password: str) -> bool:
         """Does `password` match `stored` (None: check the dummy, answer False)."""
         try:
-            return self._hasher.verify(stored or self._dummy, password) and stored is not None
+            return self._hasher.verify(stored or self.dummy, password) and stored is not None
         except (VerifyMismatchError, VerificationError, InvalidHashError):
             return False
 
