@@ -24,6 +24,11 @@ class Login(StrictBody):
     password: str = Field(max_length=PASSWORD_FIELD_MAX)
 
 
+class AccountState(BaseModel):
+    name: str
+    password: bool  # a password is set (changing it asks for the old one)
+
+
 class SessionView(BaseModel):
     id: str  # names the session in this list (a prefix of its hash), opens nothing
     label: str  # "Firefox on Linux"

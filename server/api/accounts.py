@@ -13,7 +13,15 @@ from fastapi import APIRouter, Depends, HTTPException, Path, Request, Response
 from server.accounts import BadCredentials, NameTaken, WeakPassword, name_key
 from server.players import Player
 
-from .account_schemas import Login, MergeAnswer, Merged, MergeOffer, Sessions, SetPassword
+from .account_schemas import (
+    AccountState,
+    Login,
+    MergeAnswer,
+    Merged,
+    MergeOffer,
+    Sessions,
+    SetPassword,
+)
 from .cookies import clear_cookie, set_cookie
 from .csrf import same_site
 from .deps import (
@@ -150,6 +158,13 @@ async def logout_everywhere(
     """Every session of the account ends, this one too (a stolen cookie with them)."""
     await accounts.end_all(me.id)
     clear_cookie(response, request, settings, SESSION_COOKIE)
+
+
+@router.get("/api/account", response_model=AccountState, responses=_ERRORS)
+async def account_state(me: Account, accounts: AccountsDep) -> dict[str, Any]:
+    """The signed-in account: its name and whether a password is set."""
+    record = await accounts.account(me.id)
+    return {"name": me.name, "password": record is not None and record.password_hash is not None}
 
 
 @router.get("/api/account/sessions", response_model=Sessions, responses=_ERRORS)

@@ -28,11 +28,13 @@ def test_a_guest_with_a_password_signs_in_on_another_device_as_itself(client: Te
     assert phone.set_password().status_code == 204
     cookies = " ".join(phone.set_cookies).lower()
     guest = phone.me()
+    assert phone.call("GET", "/api/account").json() == {"name": "Ana", "password": True}
     assert f"{SESSION}=" in cookies and "httponly" in cookies and "samesite=lax" in cookies
     assert GUEST not in phone.jar  # the guest cookie is gone: it opens nothing now
     assert guest["account"] is True and guest["name"] == "Ana"
     laptop = Device(client)
     assert laptop.me()["account"] is False and laptop.me()["id"] != guest["id"]
+    assert laptop.call("GET", "/api/account").status_code == 401  # a guest has none
     assert laptop.login("ana", STRONG).status_code == 204
     there = laptop.me()
     assert (there["id"], there["name"], there["ratings"]) == (

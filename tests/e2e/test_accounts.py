@@ -71,10 +71,14 @@ def test_a_passkey_and_a_password_keep_the_player_on_another_browser(
     before = {"ana": shown(ana), "ben": shown(ben)}
 
     # Ana adds a passkey: her guest is an account now.
+    expect(ana.get_by_test_id("account-panel")).to_contain_text("Keep this player")
+    ana.get_by_test_id("account-panel").screenshot(path=str(artifacts / "accounts-keep.png"))
     cdp, first = authenticator(ana)
     ana.get_by_test_id("add-passkey").click()
     expect(ana.get_by_test_id("passkey")).to_have_count(1)
     expect(ana.get_by_test_id("session")).to_have_count(1)
+    expect(ana.get_by_test_id("new-password")).to_be_visible()
+    expect(ana.get_by_test_id("old-password")).to_have_count(0)  # no password yet
     ana.screenshot(path=str(artifacts / "accounts-profile.png"), full_page=True)
     (credential,) = cdp.send("WebAuthn.getCredentials", {"authenticatorId": first})["credentials"]
     assert credential["isResidentCredential"] and credential["rpId"] == "localhost"
@@ -95,6 +99,7 @@ def test_a_passkey_and_a_password_keep_the_player_on_another_browser(
     ben.get_by_test_id("new-password").fill(PASSWORD)
     ben.get_by_test_id("set-password").click()
     expect(ben.get_by_test_id("sign-out-everywhere")).to_be_visible()
+    expect(ben.get_by_test_id("old-password")).to_be_visible()  # changing asks for it
     phone = new_page()
     phone.goto(local + "/")
     phone.get_by_test_id("practice").click()

@@ -73,6 +73,8 @@ export const accounts = {
   /** @param {string} password @param {string} [oldPassword] */
   setPassword: (password, oldPassword) => request('POST', '/api/account/password',
     { password, ...(oldPassword ? { old_password: oldPassword } : {}) }),
+  /** The signed-in account: `{name, password}` (whether a password is set). */
+  state: () => request('GET', '/api/account'),
   sessions: () => request('GET', '/api/account/sessions'),
   /** @param {string} id */
   revokeSession: (id) => request('DELETE', `/api/account/sessions/${encodeURIComponent(id)}`),

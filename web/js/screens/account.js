@@ -59,14 +59,17 @@ export function accountPanel(profile) {
   everywhere.addEventListener('click', () => act(() => accounts.logoutEverywhere()));
   const actions = el('div', { class: 'row' });
   actions.append(addPasskey, out, everywhere);
+  const password = el('div', { 'data-testid': 'password-part' });
   panel.append(el('h3', {}, 'Passkeys'), passkeys, el('h3', {}, 'Signed in on'), sessions,
-    el('h3', {}, 'Password'), passwordForm(true, act), actions, error);
+    el('h3', {}, 'Password'), password, actions, error);
   fillLists(passkeys, sessions, act, error);
+  accounts.state().then((s) => password.append(passwordForm(s.password, act)),
+    (e) => { error.textContent = messageOf(e); });
   return panel;
 }
 
 /**
- * @param {boolean} change an account (the old password is asked) or a guest setting one
+ * @param {boolean} change a password is set (the old one is asked), or none yet
  * @param {(fn: () => Promise<unknown>) => void} act
  */
 function passwordForm(change, act) {
