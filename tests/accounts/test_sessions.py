@@ -101,6 +101,17 @@ def test_a_cross_site_page_can_neither_rename_nor_sign_out(client: TestClient):
     )
     assert no_origin.status_code == 403
     assert phone.me()["id"] == ana and phone.me()["name"] == "Ana"
+    forged = phone.call(
+        "POST", "/api/login", json={"name": "Ana", "password": "x" * 8}, headers=EVIL
+    )
+    assert forged.status_code == 403  # nor sign the device in to another account
+    plain = phone.call(
+        "POST",
+        "/api/login",
+        content='{"name": "Ana", "password": "p"}',
+        headers={"Content-Type": "text/plain"},
+    )
+    assert plain.status_code == 422  # a form's body is not read as JSON
     same = {"Origin": "http://testserver", "Sec-Fetch-Site": "same-origin"}
     assert phone.rename("Ana B", headers=same).status_code == 200
     assert phone.call("POST", "/api/logout", headers=same).status_code == 204
