@@ -90,20 +90,25 @@ async def set_password(
     required: 401 `bad_credentials`; every other session ends). 422 `weak_password`."""
     record = await accounts.account(me.id)
     assert record is not None  # `me` was found
-    key = name_key(me.name)
-    if record.password_hash is not None and not limits.allow(client, key):
+    key, now = name_key(me.name), registry.clock.wall()
+    checked = record.password_hash is not None  # a change: the old password is checked
+    if checked and not limits.reserve(client, key):
         raise HTTPException(429, RATE_LIMITED)
-    now = registry.clock.wall()
+    failed = False
     try:
-        claimed = await accounts.set_password(record, body.password, body.old_password, now)
+        async with limits.turn():
+            claimed = await accounts.set_password(record, body.password, body.old_password, now)
     except BadCredentials:
-        limits.failed(client, key)
+        failed = True
         raise HTTPException(401, BAD_CREDENTIALS) from None
     except WeakPassword as exc:
         detail = {"code": "weak_password", "reason": exc.code, "message": str(exc)}
         raise HTTPException(422, detail) from None
     except NameTaken:
         raise HTTPException(409, NAME_TAKEN) from None
+    finally:
+        if checked:
+            limits.release(client, key, failed)
     if claimed:
         clear_cookie(response, request, settings, COOKIE)  # the guest cookie opens nothing now
     else:
@@ -126,13 +131,17 @@ async def login(
     `bad_credentials` (an unknown name and a wrong password alike); 429 `rate_limited`
     after too many failures from this address or at this name."""
     key = name_key(body.name)
-    if not limits.allow(client, key):
+    if not limits.reserve(client, key):
         raise HTTPException(429, RATE_LIMITED)
+    failed = False
     try:
-        player_id = await accounts.sign_in(body.name, body.password)
+        async with limits.turn():
+            player_id = await accounts.sign_in(body.name, body.password)
     except BadCredentials:
-        limits.failed(client, key)
+        failed = True
         raise HTTPException(401, BAD_CREDENTIALS) from None
+    finally:
+        limits.release(client, key, failed)
     await sign_in_here(request, response, accounts, settings, player_id, registry.clock.wall())
 
 

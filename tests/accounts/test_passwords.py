@@ -5,6 +5,9 @@ parameters change; account names unique after NFKC and casefolding."""
 
 from __future__ import annotations
 
+import asyncio
+
+import httpx
 import pytest
 from argon2 import PasswordHasher
 from fastapi.testclient import TestClient
@@ -12,6 +15,7 @@ from fastapi.testclient import TestClient
 from server.accounts import Hasher
 from server.store.accounts import AccountRows
 from tests.accounts.device import GUEST, SESSION, STRONG, Device
+from tests.support.rooms import app_with
 
 BAD = {"detail": {"code": "bad_credentials", "message": "Wrong name or password."}}
 
@@ -169,3 +173,23 @@ def test_account_names_are_unique_after_nfkc_and_casefolding(client: TestClient,
     assert (renamed.status_code, renamed.json()["detail"]["code"]) == (409, "name_taken")
     assert ben.rename("Benedict").status_code == 200
     assert Device(client).login("benedict").status_code == 204  # signs in by the new name
+
+
+def test_a_burst_of_guesses_sent_together_is_limited_like_one_after_another(settings):
+    """Attempts sent at once queue for their turn, so each sees the failures before it:
+    no more than the limit reach the hashing."""
+
+    async def burst() -> list[int]:
+        app = app_with(settings.replace(login_rate="3/minute"))
+        async with app.router.lifespan_context(app):
+            transport = httpx.ASGITransport(app=app)
+            async with httpx.AsyncClient(transport=transport, base_url="http://test") as http:
+                answers = await asyncio.gather(
+                    *(
+                        http.post("/api/login", json={"name": f"N{n}", "password": "guess"})
+                        for n in range(8)
+                    )
+                )
+        return sorted(a.status_code for a in answers)
+
+    assert asyncio.run(burst()) == [401, 401, 401, 429, 429, 429, 429, 429]
