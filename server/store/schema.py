@@ -151,3 +151,16 @@ player_seats = Table(  # the seats players with a profile took: their matches on
     PrimaryKeyConstraint("player_id", "room_id"),
     Index("player_seats_room", "room_id"),
 )
+
+analyses = Table(  # the analysis of a finished match (server.ai.analysis), stored once
+    "analyses",
+    metadata,
+    Column("match_id", Integer, ForeignKey("matches.id"), primary_key=True, autoincrement=False),
+    Column("status", Text, nullable=False),  # queued | running | ready | failed
+    Column("requested_at", Double, nullable=False),
+    Column("claimed_by", Text),  # the process analysing it (running), for people
+    Column("claimed_at", Double),  # a claim older than the stale time is taken over
+    Column("result", Text),  # JSON of the MatchAnalysis (ready), or the error (failed)
+    Column("finished_at", Double),
+    Index("analyses_queue", "status", "requested_at"),
+)

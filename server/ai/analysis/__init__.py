@@ -17,9 +17,11 @@ from .judge import (
     analyse_match,
     judge_shot,
     shot_seed,
+    summarise,
 )
 from .rebuild import Before, StoredShot, positions
 from .verdicts import BEST, GOOD, MISTAKE, VERDICTS
+from .worker import judge_nth
 
 __all__ = [
     "BEST",
@@ -35,7 +37,9 @@ __all__ = [
     "ShotVerdict",
     "StoredShot",
     "analyse_match",
+    "judge_nth",
     "judge_shot",
     "positions",
     "shot_seed",
+    "summarise",
 ]

@@ -100,6 +100,13 @@ def analyse_match(
     """Every shot of a stored match judged, and the players' accuracy. `budget`: the pro's
     simulations per plan (None: the pro's own)."""
     judged = [judge_shot(match_id, before, budget) for before in positions(kind, players, shots)]
+    return summarise(match_id, kind, players, judged)
+
+
+def summarise(
+    match_id: int, kind: str, players: list[str], judged: list[ShotVerdict]
+) -> MatchAnalysis:
+    """The match's analysis from its shots judged one by one (`judge_shot`)."""
     light = [Judged(s.n, s.seat, s.loss) for s in judged]
     summaries = [_summary(seat, name, judged, light) for seat, name in enumerate(players)]
     return MatchAnalysis(match_id, kind, LEVEL, summaries, judged, turning_points(light))

@@ -1,0 +1,31 @@
+"""Analyses of finished matches (server.ai.analysis): one row a match, claimed by the one
+process that analyses it, the result kept once (server.store.analyses)."""
+
+from __future__ import annotations
+
+import sqlalchemy as sa
+from alembic import op
+
+revision = "0008"
+down_revision = "0004"
+branch_labels = None
+depends_on = None
+
+
+def upgrade() -> None:
+    op.create_table(
+        "analyses",
+        sa.Column("match_id", sa.Integer, sa.ForeignKey("matches.id"), primary_key=True),
+        sa.Column("status", sa.Text, nullable=False),
+        sa.Column("requested_at", sa.Double, nullable=False),
+        sa.Column("claimed_by", sa.Text),
+        sa.Column("claimed_at", sa.Double),
+        sa.Column("result", sa.Text),
+        sa.Column("finished_at", sa.Double),
+    )
+    op.create_index("analyses_queue", "analyses", ["status", "requested_at"])
+
+
+def downgrade() -> None:
+    op.drop_index("analyses_queue", "analyses")
+    op.drop_table("analyses")
