@@ -50,6 +50,7 @@ class PlayedMatch(BaseModel):
     started_at: float
     finished_at: float | None
     replay: str | None  # /m/{match_id}, once a shot was played
+    accuracy: float | None = None  # 0-100 in the match's analysis; None: not analysed
 
 
 class Profile(BaseModel):

@@ -74,6 +74,7 @@ async def _profile(data: PlayerData, player: Player, now: float, me: bool) -> di
     ratings = await data.ratings(player.id, RANKED_KINDS)
     recent = await data.recent(player.id, RECENT)
     played = await data.matches(player.id, RECENT)
+    accuracy = await data.accuracies({m.match_id: m.seat for m in played})
     shown = []
     for r in recent:
         seat = r.players.index(player.id)
@@ -112,6 +113,7 @@ async def _profile(data: PlayerData, player: Player, now: float, me: bool) -> di
                 "started_at": m.started_at,
                 "finished_at": m.finished_at,
                 "replay": f"/m/{m.match_id}" if m.shots > 0 else None,
+                "accuracy": accuracy.get(m.match_id),
             }
             for m in played
         ],

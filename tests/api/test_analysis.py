@@ -83,3 +83,10 @@ def test_the_analysis_is_queued_then_served_from_the_store(client: TestClient) -
     # served from the store: nothing is analysed a second time
     assert client.get(f"/api/matches/{MATCH_ID}/analysis").json() == body
     assert not queue.running
+
+
+def test_a_rooms_matches_are_found_by_its_id(client: TestClient) -> None:
+    """The table page finds the match it just finished by its room, for "Analyse"."""
+    found = client.get(f"/api/matches?room=room-{MATCH_ID}&limit=1").json()["matches"]
+    assert [m["id"] for m in found] == [MATCH_ID]
+    assert client.get("/api/matches?room=elsewhere").json() == {"matches": []}
