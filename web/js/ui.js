@@ -408,8 +408,8 @@ function renderRematch(state) {
 }
 
 /**
- * The ways on from a finished game, next to Rematch: a new opponent by Play now (the same
- * game when it is ranked, else 8-ball), and the lobby.
+ * The ways on from a finished game, next to Rematch: its analysis (not for practice), a new
+ * opponent by Play now (the same game when it is ranked, else 8-ball), and the lobby.
  * @param {import('./state.js').RoomState} state
  */
 function renderWaysOn(state) {
@@ -420,6 +420,8 @@ function renderWaysOn(state) {
   if (again.getAttribute('href') !== href) again.setAttribute('href', href);
   setHidden(again, !ended);
   setHidden($('end-lobby'), !ended);
+  const played = state.phase === 'over' && !state.room?.abandoned;
+  setHidden($('analyse'), !(played && state.room?.game !== 'practice'));
 }
 
 /**
