@@ -81,16 +81,20 @@ def bench_ready(matches: int, workers: int) -> None:
     )
 
 
-def bench_pro(games: int) -> None:
+def bench_pro(games: int, intended: bool) -> None:
     verdicts: Counter[str] = Counter()
     for k in range(games):
-        shots = self_play(KIND, ("pro", "pro"), FIRST_SEED + 50 + k)
+        shots = self_play(KIND, ("pro", "pro"), FIRST_SEED + 50 + k, intended)
         analysis = analyse_match(1000 + k, KIND, ["pro 0", "pro 1"], shots)
         verdicts.update(s.verdict for s in analysis.shots)
     total = sum(verdicts.values())
     share = (verdicts["best"] + verdicts["good"]) / max(total, 1)
     counts = ", ".join(f"{v} {verdicts[v]}" for v in ("best", "good", "mistake", "blunder"))
-    print(f"pro vs pro, {games} games, {total} shots: best or good {100 * share:.0f} % ({counts})")
+    strokes = "as planned" if intended else "as played (the planned stroke with the arm's error)"
+    print(
+        f"pro vs pro, {games} games, {total} shots, strokes {strokes}:"
+        f" best or good {100 * share:.0f} % ({counts})"
+    )
 
 
 def main() -> None:
@@ -102,7 +106,8 @@ def main() -> None:
     if args.matches:
         bench_ready(args.matches, args.workers)
     if args.pro_games:
-        bench_pro(args.pro_games)
+        bench_pro(args.pro_games, intended=True)
+        bench_pro(args.pro_games, intended=False)
 
 
 if __name__ == "__main__":

@@ -15,6 +15,7 @@ from fastapi.staticfiles import StaticFiles
 
 from server.api.analysis import router as analysis_router
 from server.api.body_limit import BodyLimit
+from server.api.drills import router as drills_router
 from server.api.headers import SecurityHeaders
 from server.api.matches import router as matches_router
 from server.api.meta import router as meta_router
@@ -99,7 +100,7 @@ def create_app(
     if cluster is not None:
         answer_calls(cluster, registry, settings)
     routers = (meta_router, rooms_router, matches_router, analysis_router, ws_router)
-    for router in (*routers, players_router):
+    for router in (*routers, drills_router, players_router):
         app.include_router(router)
     app.add_exception_handler(RequestValidationError, validation_handler)
     _serve_web(app, settings.web_dir)

@@ -53,12 +53,19 @@ class PlayedMatch(BaseModel):
     accuracy: float | None = None  # 0-100 in the match's analysis; None: not analysed
 
 
+class DrillBests(BaseModel):
+    tries: int  # position drills played ("play this position again")
+    made: int  # of them, a ball pocketed without a foul on the first shot
+    best_run: int  # the most made in a row
+
+
 class Profile(BaseModel):
     id: str
     name: str
     me: bool  # the asking player's own profile
     ratings: list[RatingView]  # one per ranked game
     recent: list[RecentMatch]  # ranked matches, newest first
+    drills: DrillBests | None = None  # personal bests of the drills
     matches: list[PlayedMatch]  # every match in the player's seats, newest first
 
 

@@ -26,6 +26,7 @@ from server.players import (
 )
 from server.protocol.limits import MAX_NAME
 from server.rooms import ActionError
+from server.store.drills import DrillTry
 
 from .deps import ClientId, Matchmaking, Players, Quotas, Registry, Secret, SettingsDep
 from .identity import COOKIE
@@ -70,11 +71,23 @@ def _set_cookie(response: Response, request: Request, secret: str, secure: bool)
     )
 
 
+def drill_bests(tries: list[DrillTry]) -> dict[str, int]:
+    """The personal bests of the position drills: tried, made, and the longest run of
+    positions made in a row."""
+    played = [t.made for t in tries if t.made is not None]
+    run = best = 0
+    for made in played:
+        run = run + 1 if made else 0
+        best = max(best, run)
+    return {"tries": len(played), "made": sum(played), "best_run": best}
+
+
 async def _profile(data: PlayerData, player: Player, now: float, me: bool) -> dict[str, Any]:
     ratings = await data.ratings(player.id, RANKED_KINDS)
     recent = await data.recent(player.id, RECENT)
     played = await data.matches(player.id, RECENT)
     accuracy = await data.accuracies({m.match_id: m.seat for m in played})
+    drills = drill_bests(await data.drills(player.id))
     shown = []
     for r in recent:
         seat = r.players.index(player.id)
@@ -100,6 +113,7 @@ async def _profile(data: PlayerData, player: Player, now: float, me: bool) -> di
         "me": me,
         "ratings": [_rating_view(k, now) for k in ratings.values()],
         "recent": shown,
+        "drills": drills,
         "matches": [
             {
                 "match_id": m.match_id,

@@ -12,6 +12,7 @@ from dataclasses import dataclass, replace
 from server.players import KindRating, Player, Rating, rate_match
 from server.store import Database
 from server.store.analyses import AnalysisRows
+from server.store.drills import DrillRows, DrillTry
 from server.store.players import (
     PlayerMatch,
     PlayerRecord,
@@ -111,6 +112,10 @@ class PlayerData:
             if seat < len(players) and players[seat].get("accuracy") is not None:
                 found[match_id] = float(players[seat]["accuracy"])
         return found
+
+    async def drills(self, player_id: str) -> list[DrillTry]:
+        """The drills the player set up ("play this position again"), oldest first."""
+        return await self.db.call(lambda repo: DrillRows(repo).tries_of(player_id))
 
     def seated(self, secret_hash: str, room_id: str, seat: int, at: float) -> None:
         """Queued: the player of this secret (if any) took `seat` in `room_id`."""

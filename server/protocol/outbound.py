@@ -70,6 +70,15 @@ class ChatLine(ServerMessage):
     at: float
 
 
+class DrillInfo(ServerMessage):
+    """A drill's table: the analysed shot it comes from and the pro's chance there."""
+
+    match: int
+    n: int
+    par: float
+    made: bool | None = None  # the first shot pocketed a ball without a foul (None: not yet)
+
+
 class RoomInfo(ServerMessage):
     room_id: str
     game: str
@@ -81,6 +90,7 @@ class RoomInfo(ServerMessage):
     spectators: int
     rematch: list[int]
     abandoned: bool = False
+    drill: DrillInfo | None = None  # a practice table set up from an analysed shot
 
 
 class Welcome(ServerMessage):

@@ -23,6 +23,7 @@ from server.protocol.outbound import (
     ChatLine,
     ChatMessage,
     ClockInfo,
+    DrillInfo,
     GraceInfo,
     PlayerInfo,
     RoomInfo,
@@ -31,6 +32,7 @@ from server.protocol.outbound import (
 )
 from server.rules import GAME_KINDS, Match, Outcome, RulesError
 
+from .drills import DrillSetup, made, set_up
 from .errors import ActionError
 from .tokens import hash_token, new_token, token_matches
 
@@ -97,6 +99,8 @@ class Room:
     created_at: float = 0.0
     listed: bool = True  # False: a private table, reached only through its link
     computer: dict[int, str] = field(default_factory=dict)  # seat -> level it plays at
+    setup: DrillSetup | None = None  # a drill: the table it starts from (practice only)
+    drill_made: bool | None = field(default=None, init=False)  # its first shot made it
     seats: list[Seat | None] = field(init=False)
     match: Match | None = field(default=None, init=False)
     shot: ShotInProgress | None = field(default=None, init=False)
@@ -148,6 +152,8 @@ class Room:
     def _start_when_full(self) -> None:
         if all(self.seats):
             self.match = Match(self.game, self.player_names(), race_to=self.race_to, seed=self.seed)
+            if self.setup is not None:
+                set_up(self.match, self.setup)
 
     def add_computer(self, level: str) -> int:
         """Seat the computer (always connected: it never leaves) at `level`."""
@@ -262,6 +268,11 @@ class Room:
             spectators=self.spectators,
             rematch=sorted(self.rematch_votes),
             abandoned=self.abandoned,
+            drill=None
+            if self.setup is None
+            else DrillInfo(
+                match=self.setup.match_id, n=self.setup.n, par=self.setup.par, made=self.drill_made
+            ),
         )
 
     def say(self, seat: int | None, text: str, at: float) -> ChatMessage:
@@ -349,6 +360,8 @@ class Room:
             outcome = self.match.apply(self.shot.seat, result)
         self.shot.ticks = len(result.frames)
         self.shot.outcome = outcome
+        if self.setup is not None and self.shots_played == 1:
+            self.drill_made = made(outcome)
         return outcome
 
     def abort_shot(self) -> None:

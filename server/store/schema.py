@@ -164,3 +164,13 @@ analyses = Table(  # the analysis of a finished match (server.ai.analysis), stor
     Column("finished_at", Double),
     Index("analyses_queue", "status", "requested_at"),
 )
+
+drills = Table(  # practice rooms set up from an analysed shot ("play this position again")
+    "drills",
+    metadata,
+    Column("room_id", Text, primary_key=True),
+    Column("match_id", Integer, ForeignKey("matches.id"), nullable=False),  # the shot's match
+    Column("n", Integer, nullable=False),  # the shot
+    Column("par", Double, nullable=False),  # the pro's chance from there
+    Column("created_at", Double, nullable=False),
+)

@@ -90,3 +90,27 @@ def test_a_rooms_matches_are_found_by_its_id(client: TestClient) -> None:
     found = client.get(f"/api/matches?room=room-{MATCH_ID}&limit=1").json()["matches"]
     assert [m["id"] for m in found] == [MATCH_ID]
     assert client.get("/api/matches?room=elsewhere").json() == {"matches": []}
+
+
+def test_an_analysed_shot_becomes_a_drill_on_its_stored_table(client: TestClient) -> None:
+    """ "Play this position again": a private practice table with the stored table before
+    the shot and the pro's chance there as the par; refused before the analysis."""
+    ask = {"match_id": MATCH_ID, "n": 4}
+    assert client.post("/api/drills", json=ask).json()["detail"]["code"] == "analysis_not_ready"
+    client.get(f"/api/matches/{MATCH_ID}/analysis")
+    client.portal.call(queue_of(client).drained)  # type: ignore[union-attr]
+    analysis = client.get(f"/api/matches/{MATCH_ID}/analysis").json()
+    unknown = client.post("/api/drills", json={"match_id": MATCH_ID, "n": 99})
+    assert unknown.status_code == 404
+
+    created = client.post("/api/drills", json=ask)
+    assert created.status_code == 201
+    drill = created.json()
+    assert (drill["game"], drill["listed"], drill["n"]) == ("practice", False, 4)
+    assert drill["par"] == analysis["shots"][3]["best"]["chance"]
+    joined = client.post(f"/api/rooms/{drill['room_id']}/join", json={"name": "Ana"})
+    assert joined.status_code == 200
+    state = client.get(f"/api/rooms/{drill['room_id']}").json()["state"]
+    assert state["room"]["drill"] == {"match": MATCH_ID, "n": 4, "par": drill["par"], "made": None}
+    stored = client.get(f"/api/matches/{MATCH_ID}").json()["shots"][3]["b"]
+    assert sorted(map(tuple, state["balls"])) == sorted(map(tuple, stored))

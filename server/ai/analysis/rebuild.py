@@ -36,12 +36,16 @@ class StoredShot:
     table: list[float]  # Table(*table)
     balls: dict[str, Any]  # BallSet.to_dict() before the shot
     outcome: dict[str, Any]  # Outcome.to_dict()
+    # The stroke the player meant, when it differs from the one played (a computer's
+    # plan before its arm's error); None: `shot` is what they meant (a person's, as sent).
+    intended: dict[str, Any] | None = None
 
 
 @dataclass(frozen=True)
 class Before:
-    """The game just before a stored shot (a copy: nothing else holds it), the stroke,
-    and the pocket it was called in (None: no call was needed)."""
+    """The game just before a stored shot (a copy: nothing else holds it), the stroke
+    meant (what the analysis judges), and the pocket it was called in (None: no call was
+    needed)."""
 
     stored: StoredShot
     game: Game
@@ -63,11 +67,15 @@ def positions(kind: str, players: list[str], shots: list[StoredShot]) -> Iterato
             _decide(game, stored.seat)
         game.balls = BallSet.from_dict(stored.balls)
         game.turn = stored.seat
-        stroke = from_data(Shot, stored.shot)
-        result = simulate(game.table, game.balls, stroke)
+        played = from_data(Shot, stored.shot)
+        stroke = played if stored.intended is None else from_data(Shot, stored.intended)
+        result = simulate(game.table, game.balls, played)
         decision = stored.outcome.get("decision") or {}
         game.push_out_declared = "pass" in decision.get("options", ())
-        call = _call(game, result) if game.requires_call else None
+        call = None
+        if game.requires_call:  # where the stroke meant drops the 8, else where it dropped
+            meant = result if stroke is played else simulate(game.table, game.balls, stroke)
+            call = _call(game, meant, result)
         game.called_pocket = call
         yield Before(stored, copy.deepcopy(game), stroke, call, game.push_out_declared)
         with contextlib.suppress(IllegalActionError):  # the stored outcome says what followed
@@ -75,11 +83,13 @@ def positions(kind: str, players: list[str], shots: list[StoredShot]) -> Iterato
         _follow(game, stored.outcome)
 
 
-def _call(game: Game, result: Any) -> int:
-    """The pocket the 8 was called in: where it dropped, else its nearest pocket."""
-    facts = shot_facts(game.balls, result)
-    if EIGHT in facts.pockets:
-        return int(facts.pockets[EIGHT])
+def _call(game: Game, *results: Any) -> int:
+    """The pocket the 8 was called in (the stored rows keep no call): where it dropped in
+    the first of `results` that drops it, else its nearest pocket."""
+    for result in results:
+        facts = shot_facts(game.balls, result)
+        if EIGHT in facts.pockets:
+            return int(facts.pockets[EIGHT])
     centres = [p.center for p in game.table.pockets]
     x, y = game.balls.position_of(EIGHT)
     return min(

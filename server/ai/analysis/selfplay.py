@@ -16,9 +16,13 @@ from .rebuild import StoredShot
 MAX_TURNS = 200  # a game that is not over by then is cut short
 
 
-def self_play(kind: str, levels: tuple[str, str], seed: int) -> list[StoredShot]:
-    """One game of `kind`, seat 0 at `levels[0]` breaking, each stroke stored as its arm
-    played it; the rack, plans and errors all follow from `seed`."""
+def self_play(
+    kind: str, levels: tuple[str, str], seed: int, intended: bool = False
+) -> list[StoredShot]:
+    """One game of `kind`, seat 0 at `levels[0]` breaking; the rack, plans and errors all
+    follow from `seed`. Each stroke is stored as its arm played it (as a room stores a
+    computer's); with `intended`, the plan before the arm's error is kept beside it, and
+    that is what the analysis judges (as a person's stroke is judged as sent)."""
     game = Game.new(kind, [f"{levels[0]} 0", f"{levels[1]} 1"], seed=seed)
     bots = [Bot(level, seed=seed + seat) for seat, level in enumerate(levels)]
     rng = np.random.default_rng(seed)
@@ -46,6 +50,7 @@ def self_play(kind: str, levels: tuple[str, str], seed: int) -> list[StoredShot]
                 game=1,
                 seat=seat,
                 shot=to_data(stroke),
+                intended=to_data(turn.shot) if intended else None,
                 table=game.table.fields(),
                 balls=before.to_dict(),
                 outcome=outcome.to_dict(),

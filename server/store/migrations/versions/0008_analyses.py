@@ -1,5 +1,6 @@
 """Analyses of finished matches (server.ai.analysis): one row a match, claimed by the one
-process that analyses it, the result kept once (server.store.analyses)."""
+process that analyses it, the result kept once (server.store.analyses); and the drills
+set up from analysed shots, one row a practice room (server.store.drills)."""
 
 from __future__ import annotations
 
@@ -24,8 +25,17 @@ def upgrade() -> None:
         sa.Column("finished_at", sa.Double),
     )
     op.create_index("analyses_queue", "analyses", ["status", "requested_at"])
+    op.create_table(
+        "drills",
+        sa.Column("room_id", sa.Text, primary_key=True),
+        sa.Column("match_id", sa.Integer, sa.ForeignKey("matches.id"), nullable=False),
+        sa.Column("n", sa.Integer, nullable=False),
+        sa.Column("par", sa.Double, nullable=False),
+        sa.Column("created_at", sa.Double, nullable=False),
+    )
 
 
 def downgrade() -> None:
+    op.drop_table("drills")
     op.drop_index("analyses_queue", "analyses")
     op.drop_table("analyses")
