@@ -1,15 +1,20 @@
 """A finished match's analysis on its replay page: "Analyse" asks for it, the strip shows
 each shot coloured by its verdict, the players' accuracy is shown, and the pro's best shot
-is drawn over the table beside the shot played. Real Chromium, real server (the analysis
-in its idle-class planner process, as in production)."""
+is drawn over the table beside the shot played; a newcomer's mistake played again as a
+drill. Real Chromium, real server (the analysis in its idle-class planner process, as in
+production)."""
 
 from __future__ import annotations
 
+import re
+
+import httpx
 import pytest
 from playwright.sync_api import expect
 
-from .helpers import wait_for
+from .helpers import aim_and_shoot, wait_for, wait_ready
 from .test_history import REPLAY_READY, play_a_short_match
+from .test_newcomer import apex, create, sit
 
 pytestmark = pytest.mark.browser
 
@@ -56,3 +61,50 @@ def test_a_replay_shows_the_verdict_strip_and_the_best_shot(base_url, new_page, 
     expect(page.get_by_test_id("replay-shot")).to_have_text("shot 2 / 2")
     expect(page.get_by_test_id("analysis-shot")).to_have_attribute("data-verdict", verdicts[1])
     wait_for(page, "window.__replay.analysis.bestDrawn")
+
+
+def test_a_newcomer_analyses_their_game_and_plays_a_mistake_as_a_drill(
+    base_url, new_page, artifacts
+):
+    room_id = create(base_url, race_to=1, shot_clock=0)
+    ana, ben = new_page(), new_page()
+    sit(ana, base_url, room_id, "Ana")
+    sit(ben, base_url, room_id, "Ben")
+    wait_ready(ana, "aiming")
+    # Ana's soft break is illegal (a mistake to learn from); Ben plays on, then concedes.
+    aim_and_shoot(ana, apex(ana), pull_px=40)
+    decision = ben.get_by_test_id("decision")
+    decision.get_by_role("button", name="Play from here").click(timeout=30_000)
+    wait_for(ana, "!window.__pool.state.match.decision")
+    ben.on("dialog", lambda d: d.accept())
+    ben.get_by_test_id("concede").click()
+
+    # After the game: Analyse opens the replay with the analysis.
+    ana.get_by_test_id("analyse").click(timeout=30_000)
+    ana.wait_for_url(re.compile(r"/m/\d+\?analyse=1$"))
+    wait_for(ana, "window.__replay && window.__replay.analysis.ready", timeout=ANALYSED)
+    first = ana.get_by_test_id("verdict").first
+    expect(first).to_have_attribute("data-verdict", re.compile("^(mistake|blunder)$"))
+    expect(ana.get_by_test_id("analysis-shot")).to_contain_text("The pro:")
+    match_id = int(ana.url.split("/m/")[1].split("?")[0])
+    stored = httpx.get(f"{base_url}/api/matches/{match_id}", timeout=20).json()["shots"][0]["b"]
+
+    # Play it again: a practice table with the stored table, the pro's chance as par.
+    ana.get_by_test_id("analysis-drill").click()
+    ana.wait_for_url(re.compile(r"/r/[^/?]+$"))
+    ana.get_by_test_id("join").click()
+    wait_ready(ana, "aiming")
+    expect(ana.get_by_test_id("drill-text")).to_contain_text("Par: the strongest computer level")
+    drill_room = ana.url.split("/r/")[1]
+    state = httpx.get(f"{base_url}/api/rooms/{drill_room}", timeout=20).json()["state"]
+    assert sorted(map(tuple, state["balls"])) == sorted(map(tuple, stored))
+    ana.screenshot(path=str(artifacts / "analysis-drill.png"))
+    aim_and_shoot(ana, apex(ana))
+    expect(ana.get_by_test_id("drill-text")).to_have_attribute(
+        "data-made", re.compile("^(true|false)$"), timeout=30_000
+    )
+    expect(ana.get_by_test_id("drill-back")).to_have_attribute("href", f"/m/{match_id}?analyse=1")
+
+    # The profile keeps the drill among the personal bests.
+    ana.goto(f"{base_url}/profile")
+    expect(ana.get_by_test_id("profile-drills")).to_contain_text("of 1;")

@@ -4,10 +4,13 @@
  * table page's "Analyse" opens it), polled while the server says it is pending, then shown
  * as a strip of the match's shots coloured by verdict (a click shows that shot), each
  * player's accuracy, and for the shot on the table what was played against the pro's best
- * choice, which the replay draws over the table (`drawPlan`).
+ * choice, which the replay draws over the table (`drawPlan`). A mistake or a blunder can
+ * be played again on a practice table set up from its stored table ("Play this position
+ * again", `POST /api/drills`).
  */
 
 import { describeHint } from './hint.js';
+import { request } from './net.js';
 import { DEFAULT_LIMITS } from './limits.js';
 
 const POLL_MS = 2000; // between asks while the analysis is pending
@@ -61,7 +64,22 @@ export class ReplayAnalysis {
     this.strip = /** @type {HTMLElement} */ (document.getElementById('analysis-strip'));
     this.accuracy = /** @type {HTMLElement} */ (document.getElementById('analysis-accuracy'));
     this.caption = /** @type {HTMLElement} */ (document.getElementById('analysis-shot'));
+    this.drill = /** @type {HTMLButtonElement} */ (document.getElementById('analysis-drill'));
     this.button.addEventListener('click', () => { this.start(); });
+    this.drill.addEventListener('click', () => { this.playAgain(); });
+  }
+
+  /** Open a practice table on the shot on the table's position, and go there. */
+  async playAgain() {
+    this.drill.disabled = true;
+    try {
+      const created = await request('POST', '/api/drills',
+        { match_id: Number(this.matchId), n: this.n });
+      location.assign(created.url);
+    } catch (e) {
+      this.status.textContent = e instanceof Error ? e.message : String(e);
+      this.drill.disabled = false;
+    }
   }
 
   /** Ask for the analysis until it is ready (or refused). */
@@ -135,6 +153,7 @@ export class ReplayAnalysis {
     const shot = this.byN.get(n);
     this.caption.textContent = shot ? judgedWords(shot) : '';
     this.caption.dataset.verdict = shot?.verdict ?? '';
+    this.drill.hidden = !(shot && (shot.verdict === 'mistake' || shot.verdict === 'blunder'));
   }
 
   /** The pro's best choice for the shot on the table, once analysed. */

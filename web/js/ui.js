@@ -247,6 +247,7 @@ export function renderHud(state, now) {
   setText($('role'), state.me.role === 'player' ? `seat ${(state.me.seat ?? 0) + 1}` : 'spectator');
   renderRematch(state);
   renderWaysOn(state);
+  renderDrill(state);
   renderActions(state);
   renderWinner(winner);
   const error = state.error && now - state.error.at < 4 ? state.error.message : '';
@@ -405,6 +406,25 @@ function renderRematch(state) {
   setText(info, text);
   setHidden(info, !text);
   info.dataset.votes = votes.join(',');
+}
+
+/**
+ * A drill's table (`state.room.drill`): where it comes from, its par, and once the first
+ * shot is played whether it made the position; a link back to the match's analysis.
+ * @param {import('./state.js').RoomState} state
+ */
+function renderDrill(state) {
+  const drill = state.room?.drill;
+  setHidden($('drill'), !drill);
+  if (!drill) return;
+  const par = `Par: the strongest computer level pots from here ${Math.round(drill.par * 100)} % of the time.`;
+  const result = drill.made === null || drill.made === undefined ? `Drill: shot ${drill.n} again. ${par}`
+    : drill.made ? `Made it: a ball pocketed without a foul. ${par}` : `Not this time. ${par}`;
+  setText($('drill-text'), result);
+  $('drill-text').dataset.made = drill.made === null || drill.made === undefined ? '' : String(drill.made);
+  const back = `/m/${drill.match}?analyse=1`;
+  const link = $('drill-back');
+  if (link.getAttribute('href') !== back) link.setAttribute('href', back);
 }
 
 /**

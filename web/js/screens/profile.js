@@ -40,7 +40,7 @@ export async function startProfile(playerId) {
   nav.append(el('a', { href: '/' }, '← Lobby'), ' · ',
     el('a', { href: '/leaderboard' }, 'Leaderboard'));
   root.replaceChildren(nav, headPanel(profile, error), ratingsPanel(profile),
-    accuracyPanel(profile.matches), recentPanel(profile.recent), matchesPanel(profile.matches));
+    accuracyPanel(profile.matches, profile.drills), recentPanel(profile.recent), matchesPanel(profile.matches));
 }
 
 /**
@@ -137,11 +137,17 @@ const CHART_H = 80;
 /**
  * The player's accuracy (0-100) in their analysed recent matches, oldest to newest, as a
  * small line chart (a match not analysed is left out).
+ * With the personal bests of the position drills under it.
  * @param {any[]} matches newest first
+ * @param {{tries: number, made: number, best_run: number} | null | undefined} drills
  */
-function accuracyPanel(matches) {
+function accuracyPanel(matches, drills) {
   const panel = el('section', { class: 'panel' });
   panel.append(el('h2', {}, 'Accuracy'));
+  if (drills?.tries) {
+    panel.append(el('p', { class: 'small', 'data-testid': 'profile-drills' },
+      `Position drills: made ${drills.made} of ${drills.tries}; best run ${drills.best_run} in a row.`));
+  }
   const points = matches.filter((m) => typeof m.accuracy === 'number').reverse()
     .map((m) => /** @type {number} */ (m.accuracy));
   if (!points.length) {
