@@ -57,6 +57,9 @@ class DrillBests(BaseModel):
     tries: int  # position drills played ("play this position again")
     made: int  # of them, a ball pocketed without a foul on the first shot
     best_run: int  # the most made in a row
+    ghost_racks: int = 0  # ghost 9-ball racks played
+    ghost_cleared: int = 0  # of them, cleared (the ghost beaten)
+    ghost_best: int = 0  # the most balls pocketed in one
 
 
 class Profile(BaseModel):

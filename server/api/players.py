@@ -72,14 +72,22 @@ def _set_cookie(response: Response, request: Request, secret: str, secure: bool)
 
 
 def drill_bests(tries: list[DrillTry]) -> dict[str, int]:
-    """The personal bests of the position drills: tried, made, and the longest run of
-    positions made in a row."""
-    played = [t.made for t in tries if t.made is not None]
+    """The personal bests of the drills: position drills tried, made and the longest run
+    made in a row; ghost 9-ball racks played, cleared and the most balls pocketed in one."""
+    positions = [t.score == 1 for t in tries if t.kind == "position" and t.done]
     run = best = 0
-    for made in played:
+    for made in positions:
         run = run + 1 if made else 0
         best = max(best, run)
-    return {"tries": len(played), "made": sum(played), "best_run": best}
+    ghosts = [t for t in tries if t.kind == "ghost" and t.score is not None]
+    return {
+        "tries": len(positions),
+        "made": sum(positions),
+        "best_run": best,
+        "ghost_racks": len(ghosts),
+        "ghost_cleared": sum(t.won for t in ghosts),
+        "ghost_best": max((t.score or 0 for t in ghosts), default=0),
+    }
 
 
 async def _profile(data: PlayerData, player: Player, now: float, me: bool) -> dict[str, Any]:

@@ -71,12 +71,17 @@ class ChatLine(ServerMessage):
 
 
 class DrillInfo(ServerMessage):
-    """A drill's table: the analysed shot it comes from and the pro's chance there."""
+    """A drill's table (`server.rooms.drills`): a position (the analysed shot it comes
+    from, the pro's chance there) or a ghost 9-ball rack, and how it went so far."""
 
-    match: int
-    n: int
-    par: float
-    made: bool | None = None  # the first shot pocketed a ball without a foul (None: not yet)
+    kind: Literal["position", "ghost"]
+    match: int | None
+    n: int | None
+    par: float | None
+    made: bool | None  # position: the first shot pocketed a ball without a foul (None: not yet)
+    score: int  # position: 1 made, 0 missed; ghost: balls pocketed
+    done: bool  # nothing more to score (the first shot played; the ghost won, or beaten)
+    won: bool  # ghost: the rack cleared
 
 
 class RoomInfo(ServerMessage):

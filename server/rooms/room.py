@@ -32,7 +32,7 @@ from server.protocol.outbound import (
 )
 from server.rules import GAME_KINDS, Match, Outcome, RulesError
 
-from .drills import DrillSetup, made, set_up
+from .drills import DrillScore, DrillSetup, scored, set_up
 from .errors import ActionError
 from .tokens import hash_token, new_token, token_matches
 
@@ -100,7 +100,7 @@ class Room:
     listed: bool = True  # False: a private table, reached only through its link
     computer: dict[int, str] = field(default_factory=dict)  # seat -> level it plays at
     setup: DrillSetup | None = None  # a drill: the table it starts from (practice only)
-    drill_made: bool | None = field(default=None, init=False)  # its first shot made it
+    drill: DrillScore = field(default_factory=DrillScore)  # how the drill went so far
     seats: list[Seat | None] = field(init=False)
     match: Match | None = field(default=None, init=False)
     shot: ShotInProgress | None = field(default=None, init=False)
@@ -268,11 +268,7 @@ class Room:
             spectators=self.spectators,
             rematch=sorted(self.rematch_votes),
             abandoned=self.abandoned,
-            drill=None
-            if self.setup is None
-            else DrillInfo(
-                match=self.setup.match_id, n=self.setup.n, par=self.setup.par, made=self.drill_made
-            ),
+            drill=None if self.setup is None else drill_info(self.setup, self.drill),
         )
 
     def say(self, seat: int | None, text: str, at: float) -> ChatMessage:
@@ -356,12 +352,13 @@ class Room:
     def apply_shot(self, result: ShotResult) -> Outcome:
         """Judge the simulated shot now (the stream shows it afterwards)."""
         assert self.shot is not None and self.match is not None
+        before = self.match.game.balls
         with _rules():
             outcome = self.match.apply(self.shot.seat, result)
         self.shot.ticks = len(result.frames)
         self.shot.outcome = outcome
-        if self.setup is not None and self.shots_played == 1:
-            self.drill_made = made(outcome)
+        if self.setup is not None:
+            self.drill = scored(self.setup, self.drill, before, result, outcome)
         return outcome
 
     def abort_shot(self) -> None:
@@ -451,6 +448,21 @@ class Room:
         self.match.rematch()
         self.rematch_votes.clear()
         return True
+
+
+def drill_info(setup: DrillSetup, score: DrillScore) -> DrillInfo:
+    """A drill as `state.room.drill` shows it."""
+    position = setup.kind == "position"
+    return DrillInfo(
+        kind=setup.kind,
+        match=setup.match_id,
+        n=setup.n,
+        par=setup.par,
+        made=(score.score == 1) if position and score.done else None,
+        score=score.score,
+        done=score.done,
+        won=score.won,
+    )
 
 
 def _check_game(match: Match, game: int | None) -> None:

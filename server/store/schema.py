@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from sqlalchemy import (
     BigInteger,
+    Boolean,
     Column,
     Double,
     ForeignKey,
@@ -21,6 +22,7 @@ from sqlalchemy import (
     Table,
     Text,
     UniqueConstraint,
+    false,
 )
 
 metadata = MetaData()
@@ -165,12 +167,16 @@ analyses = Table(  # the analysis of a finished match (server.ai.analysis), stor
     Index("analyses_queue", "status", "requested_at"),
 )
 
-drills = Table(  # practice rooms set up from an analysed shot ("play this position again")
+drills = Table(  # drills' practice rooms (server.rooms.drills) and how each went
     "drills",
     metadata,
     Column("room_id", Text, primary_key=True),
-    Column("match_id", Integer, ForeignKey("matches.id"), nullable=False),  # the shot's match
-    Column("n", Integer, nullable=False),  # the shot
-    Column("par", Double, nullable=False),  # the pro's chance from there
+    Column("kind", Text, nullable=False),  # position | ghost
+    Column("match_id", Integer, ForeignKey("matches.id")),  # position: the shot's match
+    Column("n", Integer),  # position: the shot
+    Column("par", Double),  # position: the pro's chance from there
     Column("created_at", Double, nullable=False),
+    Column("score", Integer),  # position: 1 made, 0 missed; ghost: balls pocketed
+    Column("done", Boolean, nullable=False, server_default=false()),  # nothing more to score
+    Column("won", Boolean, nullable=False, server_default=false()),  # ghost: rack cleared
 )

@@ -106,11 +106,25 @@ def test_an_analysed_shot_becomes_a_drill_on_its_stored_table(client: TestClient
     created = client.post("/api/drills", json=ask)
     assert created.status_code == 201
     drill = created.json()
-    assert (drill["game"], drill["listed"], drill["n"]) == ("practice", False, 4)
+    assert (drill["game"], drill["listed"], drill["kind"], drill["n"]) == (
+        "practice",
+        False,
+        "position",
+        4,
+    )
     assert drill["par"] == analysis["shots"][3]["best"]["chance"]
     joined = client.post(f"/api/rooms/{drill['room_id']}/join", json={"name": "Ana"})
     assert joined.status_code == 200
     state = client.get(f"/api/rooms/{drill['room_id']}").json()["state"]
-    assert state["room"]["drill"] == {"match": MATCH_ID, "n": 4, "par": drill["par"], "made": None}
+    assert state["room"]["drill"] == {
+        "kind": "position",
+        "match": MATCH_ID,
+        "n": 4,
+        "par": drill["par"],
+        "made": None,
+        "score": 0,
+        "done": False,
+        "won": False,
+    }
     stored = client.get(f"/api/matches/{MATCH_ID}").json()["shots"][3]["b"]
     assert sorted(map(tuple, state["balls"])) == sorted(map(tuple, stored))

@@ -108,3 +108,23 @@ def test_a_newcomer_analyses_their_game_and_plays_a_mistake_as_a_drill(
     # The profile keeps the drill among the personal bests.
     ana.goto(f"{base_url}/profile")
     expect(ana.get_by_test_id("profile-drills")).to_contain_text("of 1;")
+
+
+def test_ghost_nine_ball_from_the_lobby_keeps_a_personal_best(base_url, new_page):
+    page = new_page()
+    page.goto(base_url + "/")
+    page.get_by_test_id("ghost-drill").click()
+    page.wait_for_url(re.compile(r"/r/[^/?]+$"))
+    page.get_by_test_id("join").click()
+    wait_ready(page, "aiming")
+    words = page.get_by_test_id("drill-text")
+    expect(words).to_contain_text("Ghost 9-ball: hit the lowest ball first")
+    expect(page.get_by_test_id("drill-back")).to_be_hidden()
+    balls = page.evaluate("window.__pool.balls")
+    assert sorted(b["id"] for b in balls if b["id"] != 0) == list(range(1, 10))
+    aim_and_shoot(page, apex(page))  # the break, at the 1
+    # Scored: the ghost took the rack, or the break pocketed a ball in order.
+    wait_for(page, "(d => d.done || d.score > 0)(window.__pool.state.room.drill)")
+    expect(words).to_contain_text(re.compile(r"of 9 pocketed|Pocketed: [1-9] of 9"))
+    page.goto(f"{base_url}/profile")
+    expect(page.get_by_test_id("profile-ghost")).to_contain_text("of 1 racks")

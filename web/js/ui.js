@@ -417,6 +417,12 @@ function renderDrill(state) {
   const drill = state.room?.drill;
   setHidden($('drill'), !drill);
   if (!drill) return;
+  setHidden($('drill-back'), drill.kind !== 'position');
+  if (drill.kind === 'ghost') {
+    setText($('drill-text'), ghostWords(drill));
+    $('drill-text').dataset.made = drill.done ? String(drill.won) : '';
+    return;
+  }
   const par = `Par: the strongest computer level pots from here ${Math.round(drill.par * 100)} % of the time.`;
   const result = drill.made === null || drill.made === undefined ? `Drill: shot ${drill.n} again. ${par}`
     : drill.made ? `Made it: a ball pocketed without a foul. ${par}` : `Not this time. ${par}`;
@@ -425,6 +431,16 @@ function renderDrill(state) {
   const back = `/m/${drill.match}?analyse=1`;
   const link = $('drill-back');
   if (link.getAttribute('href') !== back) link.setAttribute('href', back);
+}
+
+/**
+ * Ghost 9-ball's words: the rule, then the balls pocketed and who won the rack.
+ * @param {{score: number, done: boolean, won: boolean}} drill
+ */
+function ghostWords(drill) {
+  if (drill.won) return `You beat the ghost: all ${drill.score} balls pocketed!`;
+  if (drill.done) return `The ghost wins the rack: ${drill.score} of 9 pocketed. Another rack: Ghost 9-ball drill in the lobby.`;
+  return `Ghost 9-ball: hit the lowest ball first and pocket a ball every shot; a miss gives the ghost the rack. Pocketed: ${drill.score} of 9.`;
 }
 
 /**

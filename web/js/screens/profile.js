@@ -139,14 +139,20 @@ const CHART_H = 80;
  * small line chart (a match not analysed is left out).
  * With the personal bests of the position drills under it.
  * @param {any[]} matches newest first
- * @param {{tries: number, made: number, best_run: number} | null | undefined} drills
+ * @param {{tries: number, made: number, best_run: number, ghost_racks?: number,
+ *   ghost_cleared?: number, ghost_best?: number} | null | undefined} drills
  */
 function accuracyPanel(matches, drills) {
   const panel = el('section', { class: 'panel' });
-  panel.append(el('h2', {}, 'Accuracy'));
+  panel.append(el('h2', {}, 'Accuracy and drills'));
   if (drills?.tries) {
     panel.append(el('p', { class: 'small', 'data-testid': 'profile-drills' },
       `Position drills: made ${drills.made} of ${drills.tries}; best run ${drills.best_run} in a row.`));
+  }
+  if (drills?.ghost_racks) {
+    panel.append(el('p', { class: 'small', 'data-testid': 'profile-ghost' },
+      `Ghost 9-ball: best ${drills.ghost_best} of 9 pocketed; the ghost beaten ${
+        drills.ghost_cleared} of ${drills.ghost_racks} racks.`));
   }
   const points = matches.filter((m) => typeof m.accuracy === 'number').reverse()
     .map((m) => /** @type {number} */ (m.accuracy));

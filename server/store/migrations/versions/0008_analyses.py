@@ -28,10 +28,14 @@ def upgrade() -> None:
     op.create_table(
         "drills",
         sa.Column("room_id", sa.Text, primary_key=True),
-        sa.Column("match_id", sa.Integer, sa.ForeignKey("matches.id"), nullable=False),
-        sa.Column("n", sa.Integer, nullable=False),
-        sa.Column("par", sa.Double, nullable=False),
+        sa.Column("kind", sa.Text, nullable=False),
+        sa.Column("match_id", sa.Integer, sa.ForeignKey("matches.id")),
+        sa.Column("n", sa.Integer),
+        sa.Column("par", sa.Double),
         sa.Column("created_at", sa.Double, nullable=False),
+        sa.Column("score", sa.Integer),
+        sa.Column("done", sa.Boolean, nullable=False, server_default=sa.false()),
+        sa.Column("won", sa.Boolean, nullable=False, server_default=sa.false()),
     )
 
 
