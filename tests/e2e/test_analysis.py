@@ -12,9 +12,8 @@ import httpx
 import pytest
 from playwright.sync_api import expect
 
-from .helpers import aim_and_shoot, wait_for, wait_ready
+from .helpers import aim_and_shoot, apex, create, sit, wait_for, wait_ready
 from .test_history import REPLAY_READY, play_a_short_match
-from .test_newcomer import apex, create, sit
 
 pytestmark = pytest.mark.browser
 
