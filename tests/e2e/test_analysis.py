@@ -104,9 +104,11 @@ def test_a_newcomer_analyses_their_game_and_plays_a_mistake_as_a_drill(
     )
     expect(ana.get_by_test_id("drill-back")).to_have_attribute("href", f"/m/{match_id}?analyse=1")
 
-    # The profile keeps the drill among the personal bests.
+    # The profile keeps the drill among the personal bests, and charts the accuracy.
     ana.goto(f"{base_url}/profile")
     expect(ana.get_by_test_id("profile-drills")).to_contain_text("of 1;")
+    expect(ana.get_by_test_id("accuracy-chart")).to_be_visible()
+    expect(ana.get_by_test_id("accuracy-last")).to_contain_text("Last analysed match:")
 
 
 def test_ghost_nine_ball_from_the_lobby_keeps_a_personal_best(base_url, new_page):
