@@ -9,6 +9,10 @@ the cue ball, call the 8, answer decisions and shoot hard at random (4..9 m/s, s
 nearly always moving); `--think` seconds pass between a `state` and the bot's action.
 `--computer K`: K of the rooms seat one bot against the computer opponent (the top level,
 planning in the server's `POOL_COMPUTER_WORKERS` processes) instead of a second bot.
+`--analyses K`: K finished matches (club-level self-play) are stored before the server
+starts and their analyses asked for as the warm-up begins, so that they run (in the
+server's idle-class analysis planner, `POOL_ANALYSIS_*`) during the measured window; the
+result says how many were ready by its end.
 The clients run on uvloop (`--loop asyncio`: the standard loop) and this process's cyclic
 garbage collector is paused from the warm-up to the end of the window (its one full pass,
 0.3-0.4 s at 1,000 rooms, falls in the warm-up): the instrument's own pauses are not the
@@ -69,8 +73,11 @@ import httpx
 import websockets
 from websockets.asyncio.client import ClientConnection
 
+from bench.analysis import store_match
+from server.ai.analysis.selfplay import self_play
 from server.priority import process_stat
 from server.rooms.computer import THREAD_PLAN_NOTE
+from server.store import Database
 from tests.support.ports import free_port
 
 TICK_HZ = 120
@@ -398,15 +405,18 @@ async def run(
     server_log: Path | None = None,
     computer: int = 0,
     warmup: float = 20.0,
+    analyses: int = 0,
 ) -> dict:
     port = free_port()
     base = f"http://127.0.0.1:{port}"
     with tempfile.TemporaryDirectory() as tmp:
         log = Path(tmp) / "server.log"
+        if analyses:
+            store_finished_matches(Path(tmp) / "bench.db", analyses, seed)
         proc = start_server(port, Path(tmp) / "bench.db", log, compression is not None)
         try:
             result = await drive(
-                proc, base, rooms, seconds, compression, think, seed, computer, warmup
+                proc, base, rooms, seconds, compression, think, seed, computer, warmup, analyses
             )
             # The server logs each computer plan it had to make in its own process (its
             # planners starved of CPU, or dead): the rooms paid for those in GIL time.
@@ -452,6 +462,7 @@ async def drive(
     seed: int,
     computer: int = 0,
     warmup: float = 20.0,
+    analyses: int = 0,
 ) -> dict:
     await wait_healthy(base, proc)
     rng = random.Random(seed)
@@ -490,6 +501,9 @@ async def drive(
         for seat in (None, *range(len(bots.tokens))):  # a spectator and the bot players
             await spawn(bots, seat)
     ready.set()
+    async with httpx.AsyncClient(base_url=base, timeout=60) as http:
+        for match_id in range(1, analyses + 1):  # queued now, analysed in the window
+            await http.get(f"/api/matches/{match_id}/analysis")
     with no_cyclic_gc():  # its one full collection, 0.3-0.4 s at 1,000 rooms, in the warm-up
         await asyncio.sleep(warmup)  # every room starts shooting; the bursts settle
         bytes0 = sum(ws.received for ws in connected)
@@ -508,6 +522,10 @@ async def drive(
         bytes1 = sum(ws.received for ws in connected)
         async with httpx.AsyncClient(base_url=base, timeout=60) as http:
             server = (await http.get("/api/stats", params={"window": elapsed})).json()["stream"]
+            answers = [
+                (await http.get(f"/api/matches/{match_id}/analysis")).status_code
+                for match_id in range(1, analyses + 1)
+            ]
         # The window's last shots: their motions may still be on the way.
         await asyncio.sleep(GRACE)
     stop.set()
@@ -544,6 +562,7 @@ async def drive(
         "rolling_bytes_per_s": stats.rolling_bytes / stats.rolling_seconds
         if stats.rolling_seconds
         else math.nan,
+        "analyses_ready": answers.count(200),
         "errors": dict(stats.errors),
     }
 
@@ -570,7 +589,19 @@ COLUMNS = [
     ("steal %", "steal_pct", "{:.0f}"),
     ("B/s/client", "bytes_per_s_client", "{:.0f}"),
     ("B/s rolling", "rolling_bytes_per_s", "{:.0f}"),
+    ("analyses ready", "analyses_ready", "{:.0f}"),
 ]
+
+
+def store_finished_matches(db_path: Path, count: int, seed: int) -> None:
+    """`count` finished matches of club-level self-play, stored as ids 1..count."""
+    db = Database(db_path)
+    try:
+        for match_id in range(1, count + 1):
+            shots = self_play("eight_ball", ("club", "club"), seed * 1000 + match_id)
+            db.run(lambda repo, i=match_id, s=shots: store_match(repo, i, s))
+    finally:
+        db.close()
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -613,6 +644,12 @@ def main(argv: list[str] | None = None) -> None:
         "installs: cheaper, leaves more of the machine to the server)",
     )
     parser.add_argument(
+        "--analyses",
+        type=int,
+        default=0,
+        help="finished matches whose analyses run during the window",
+    )
+    parser.add_argument(
         "--computer",
         type=int,
         default=0,
@@ -640,6 +677,7 @@ def main(argv: list[str] | None = None) -> None:
                 server_log=args.server_log,
                 computer=args.computer,
                 warmup=args.warmup,
+                analyses=args.analyses,
             )
         )
         results.append(result)

@@ -15,7 +15,9 @@ from fastapi.staticfiles import StaticFiles
 
 from server.accounts import Accounts, Ceremonies, SignInLimits
 from server.api.accounts import router as accounts_router
+from server.api.analysis import router as analysis_router
 from server.api.body_limit import BodyLimit
+from server.api.drills import router as drills_router
 from server.api.headers import SecurityHeaders
 from server.api.matches import router as matches_router
 from server.api.meta import router as meta_router
@@ -38,6 +40,7 @@ from server.ladder import (
 )
 from server.players import Window
 from server.rooms import Clock, RoomRegistry, SeedSource, StoreObserver
+from server.rooms.analyses import AnalysisQueue
 from server.rooms.clock import SYSTEM_CLOCK
 from server.rooms.computer import close_planners, open_planners
 from server.rooms.observer import RoomObserver
@@ -75,7 +78,8 @@ def create_app(
         registry, players, observer.match_id if isinstance(observer, StoreObserver) else None
     )
     matchmaker = pick_matchmaker(registry, results, cluster)
-    lifespan = _Lifespan(registry, store, observer, cluster, matchmaker)
+    analyses = AnalysisQueue(store, settings)
+    lifespan = _Lifespan(registry, store, observer, cluster, matchmaker, analyses)
     app = FastAPI(
         title="Pool online",
         version="1.0",
@@ -94,6 +98,7 @@ def create_app(
     app.state.cluster = cluster
     app.state.players = players
     app.state.matchmaker = matchmaker
+    app.state.analyses = analyses
     app.state.ranked_tables = RankedTables(results)
     app.state.accounts = Accounts(store, settings.session_idle)
     app.state.ceremonies = Ceremonies(store)
@@ -101,8 +106,8 @@ def create_app(
     if cluster is not None:
         answer_calls(cluster, registry, settings)
     for router in (
-        *(meta_router, rooms_router, matches_router, ws_router, players_router),
-        *(accounts_router, passkeys_router),
+        *(meta_router, rooms_router, matches_router, analysis_router, ws_router),
+        *(drills_router, players_router, accounts_router, passkeys_router),
     ):
         app.include_router(router)
     app.add_exception_handler(RequestValidationError, validation_handler)
@@ -113,13 +118,15 @@ def create_app(
 @dataclass
 class _Lifespan:
     """What the app starts and stops around serving: the shot runner, the planners, the
-    store, the saved rooms (or the cluster's share of them), Play now and the sweepers."""
+    store, the saved rooms (or the cluster's share of them), Play now, the analyses and
+    the sweepers."""
 
     registry: RoomRegistry
     store: Database
     observer: RoomObserver
     cluster: Cluster | None
     matchmaker: PlayNow
+    analyses: AnalysisQueue
 
     @contextlib.asynccontextmanager
     async def __call__(self, app: FastAPI) -> AsyncIterator[None]:  # noqa: ARG002 (FastAPI's signature)
@@ -150,11 +157,13 @@ class _Lifespan:
         elif isinstance(observer, StoreObserver):
             registry.restore(await store.call(lambda repo: repo.rooms()))
         await self.matchmaker.resume()
+        self.analyses.kick()  # analyses queued before this start, or left by a process gone
 
     async def _stop(self) -> None:
         registry, store = self.registry, self.store
         if isinstance(self.observer, StoreObserver):
             self.observer.stop()  # the saved rooms stay saved for the next start
+        await self.analyses.close()
         registry.close_all(CLOSE_RESTART, "server_restart")
         await asyncio.sleep(0)  # let the senders see the close
         if self.cluster is not None:

@@ -148,6 +148,18 @@ class Settings(BaseSettings):
     # `hint_wait` s (then 503 hint_timeout), one per table, address and player.
     hint_queue: Annotated[int, Field(ge=0, le=1000)] = 8
     hint_wait: Annotated[float, Field(gt=0.0, le=120.0)] = 15.0
+    # Match analyses (docs/ai.md, "Analysis"): asked for by the first GET of a finished
+    # match's analysis, run in `analysis_workers` processes at the idle class (0: a
+    # thread), at most `analysis_at_once` here at a time, each shot only while no computer
+    # turn is being planned; at most `analysis_queue` wait in the store (more: 503
+    # analysis_busy). `analysis_budget`: the pro's simulations per shot judged (its own
+    # 3900 by default). A claim silent for `analysis_stale` s (its process died) is
+    # taken over by another process.
+    analysis_workers: Annotated[int, Field(ge=0, le=64)] = 1
+    analysis_at_once: Annotated[int, Field(ge=1, le=64)] = 1
+    analysis_queue: Annotated[int, Field(ge=1, le=100_000)] = 200
+    analysis_budget: Annotated[int, Field(ge=50, le=20_000)] = 3900
+    analysis_stale: Annotated[float, Field(ge=10.0, le=86_400.0)] = 600.0
     ws_ping_interval: PositiveSeconds = 20.0
     ws_ping_timeout: PositiveSeconds = 20.0
     # permessage-deflate: ~5x less bandwidth, but ~45 % more server CPU at 200 rooms, which

@@ -19,6 +19,7 @@ from server.cluster import Cluster
 from server.config import Settings
 from server.ladder import PlayerData, PlayNow, RankedTables
 from server.rooms import RoomRegistry
+from server.rooms.analyses import AnalysisQueue
 from server.store import Database
 
 from .identity import SESSION_COOKIE, cookie_secret
@@ -140,3 +141,12 @@ Matchmaking = Annotated[PlayNow, Depends(get_matchmaker)]
 RankedTablesDep = Annotated[RankedTables, Depends(get_ranked_tables)]
 Secret = Annotated[str | None, Depends(get_secret)]
 BaseUrl = Annotated[str, Depends(get_base_url)]
+
+
+async def get_analyses(conn: HTTPConnection) -> AnalysisQueue:
+    """This server's part of the match analyses' queue."""
+    queue: AnalysisQueue = conn.app.state.analyses
+    return queue
+
+
+Analyses = Annotated[AnalysisQueue, Depends(get_analyses)]

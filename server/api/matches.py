@@ -94,9 +94,11 @@ async def recent_matches(
     store: Store,
     limit: Annotated[int, Query(ge=1, le=100)] = 20,
     status: Literal["playing", "finished", "abandoned"] | None = None,
+    room: Annotated[str | None, Query(max_length=64)] = None,
 ) -> dict[str, Any]:
-    """Matches newest first (finished, still being played, or abandoned)."""
-    records = await store.call(lambda repo: repo.recent_matches(limit, status))
+    """Matches newest first (finished, still being played, or abandoned); `room`: only
+    that room's (its match and rematches, whatever their status)."""
+    records = await store.call(lambda repo: repo.recent_matches(limit, status, room))
     return {"matches": [_match_row(r) for r in records]}
 
 

@@ -21,6 +21,7 @@ from server.cluster import Cluster, Unreachable, ws_url
 from server.config import Settings
 from server.players import seat_token
 from server.rooms import ActionError, LiveRoom, RoomRegistry
+from server.rooms.drills import DrillSetup
 
 from .hints import hint_ask, hint_for
 from .schemas import CreateRoom
@@ -45,8 +46,10 @@ async def open_room(
     body: CreateRoom,
     client: str,
     base: str,
+    setup: DrillSetup | None = None,
 ) -> dict[str, Any]:
-    """Create the room here (limits already checked by the receiving process)."""
+    """Create the room here (limits already checked by the receiving process); `setup`:
+    a drill's table (practice)."""
     try:
         if body.opponent is not None and body.game == "practice":
             raise HTTPException(
@@ -59,6 +62,7 @@ async def open_room(
             body.listed,
             owner=client,
             opponent=body.opponent,
+            setup=setup,
         )
     except ActionError as exc:
         code = 429 if exc.code == "too_many_rooms_open" else 503

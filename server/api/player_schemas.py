@@ -50,6 +50,16 @@ class PlayedMatch(BaseModel):
     started_at: float
     finished_at: float | None
     replay: str | None  # /m/{match_id}, once a shot was played
+    accuracy: float | None = None  # 0-100 in the match's analysis; None: not analysed
+
+
+class DrillBests(BaseModel):
+    tries: int  # position drills played ("play this position again")
+    made: int  # of them, a ball pocketed without a foul on the first shot
+    best_run: int  # the most made in a row
+    ghost_racks: int = 0  # ghost 9-ball racks played
+    ghost_cleared: int = 0  # of them, cleared (the ghost beaten)
+    ghost_best: int = 0  # the most balls pocketed in one
 
 
 class Profile(BaseModel):
@@ -59,6 +69,7 @@ class Profile(BaseModel):
     account: bool  # kept by a passkey or password (signs in anywhere); false: a guest
     ratings: list[RatingView]  # one per ranked game
     recent: list[RecentMatch]  # ranked matches, newest first
+    drills: DrillBests | None = None  # personal bests of the drills
     matches: list[PlayedMatch]  # every match in the player's seats, newest first
 
 

@@ -27,6 +27,7 @@ from server.players import (
 )
 from server.protocol.limits import MAX_NAME
 from server.rooms import ActionError
+from server.store.drills import DrillTry
 
 from .csrf import same_site
 from .deps import (
@@ -82,10 +83,31 @@ def _set_cookie(response: Response, request: Request, secret: str, secure: bool)
     )
 
 
+def drill_bests(tries: list[DrillTry]) -> dict[str, int]:
+    """The personal bests of the drills: position drills tried, made and the longest run
+    made in a row; ghost 9-ball racks played, cleared and the most balls pocketed in one."""
+    positions = [t.score == 1 for t in tries if t.kind == "position" and t.done]
+    run = best = 0
+    for made in positions:
+        run = run + 1 if made else 0
+        best = max(best, run)
+    ghosts = [t for t in tries if t.kind == "ghost" and t.score is not None]
+    return {
+        "tries": len(positions),
+        "made": sum(positions),
+        "best_run": best,
+        "ghost_racks": len(ghosts),
+        "ghost_cleared": sum(t.won for t in ghosts),
+        "ghost_best": max((t.score or 0 for t in ghosts), default=0),
+    }
+
+
 async def _profile(data: PlayerData, player: Player, now: float, me: bool) -> dict[str, Any]:
     ratings = await data.ratings(player.id, RANKED_KINDS)
     recent = await data.recent(player.id, RECENT)
     played = await data.matches(player.id, RECENT)
+    accuracy = await data.accuracies({m.match_id: m.seat for m in played})
+    drills = drill_bests(await data.drills(player.id))
     shown = []
     for r in recent:
         seat = r.players.index(player.id)
@@ -112,6 +134,7 @@ async def _profile(data: PlayerData, player: Player, now: float, me: bool) -> di
         "account": player.account,
         "ratings": [_rating_view(k, now) for k in ratings.values()],
         "recent": shown,
+        "drills": drills,
         "matches": [
             {
                 "match_id": m.match_id,
@@ -125,6 +148,7 @@ async def _profile(data: PlayerData, player: Player, now: float, me: bool) -> di
                 "started_at": m.started_at,
                 "finished_at": m.finished_at,
                 "replay": f"/m/{m.match_id}" if m.shots > 0 else None,
+                "accuracy": accuracy.get(m.match_id),
             }
             for m in played
         ],

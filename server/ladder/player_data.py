@@ -6,10 +6,13 @@ results can never be rated from the same stale rating.
 
 from __future__ import annotations
 
+import json
 from dataclasses import dataclass, replace
 
 from server.players import KindRating, Player, Rating, rate_match
 from server.store import Database
+from server.store.analyses import AnalysisRows
+from server.store.drills import DrillRows, DrillTry
 from server.store.players import (
     PlayerMatch,
     PlayerRecord,
@@ -97,6 +100,22 @@ class PlayerData:
 
     async def matches(self, player_id: str, limit: int) -> list[PlayerMatch]:
         return await self.db.call(lambda repo: PlayerRows(repo).matches_of(player_id, limit))
+
+    async def accuracies(self, seats: dict[int, int]) -> dict[int, float]:
+        """The player's accuracy in each analysed match of `seats` (match id -> their
+        seat), from the stored analyses; a match not analysed (yet) is left out."""
+        results = await self.db.call(lambda repo: AnalysisRows(repo).results(list(seats)))
+        found = {}
+        for match_id, text in results.items():
+            players = json.loads(text).get("players", [])
+            seat = seats[match_id]
+            if seat < len(players) and players[seat].get("accuracy") is not None:
+                found[match_id] = float(players[seat]["accuracy"])
+        return found
+
+    async def drills(self, player_id: str) -> list[DrillTry]:
+        """The drills the player set up ("play this position again"), oldest first."""
+        return await self.db.call(lambda repo: DrillRows(repo).tries_of(player_id))
 
     def seated(self, secret_hash: str, room_id: str, seat: int, at: float) -> None:
         """Queued: the player of this secret (if any) took `seat` in `room_id`."""

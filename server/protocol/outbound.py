@@ -70,6 +70,20 @@ class ChatLine(ServerMessage):
     at: float
 
 
+class DrillInfo(ServerMessage):
+    """A drill's table (`server.rooms.drills`): a position (the analysed shot it comes
+    from, the pro's chance there) or a ghost 9-ball rack, and how it went so far."""
+
+    kind: Literal["position", "ghost"]
+    match: int | None
+    n: int | None
+    par: float | None
+    made: bool | None  # position: the first shot pocketed a ball without a foul (None: not yet)
+    score: int  # position: 1 made, 0 missed; ghost: balls pocketed
+    done: bool  # nothing more to score (the first shot played; the ghost won, or beaten)
+    won: bool  # ghost: the rack cleared
+
+
 class RoomInfo(ServerMessage):
     room_id: str
     game: str
@@ -81,6 +95,7 @@ class RoomInfo(ServerMessage):
     spectators: int
     rematch: list[int]
     abandoned: bool = False
+    drill: DrillInfo | None = None  # a practice table set up from an analysed shot
 
 
 class Welcome(ServerMessage):

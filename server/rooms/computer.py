@@ -70,7 +70,7 @@ def _pool(workers: int) -> ProcessPoolExecutor:
         pool = _pools[workers] = ProcessPoolExecutor(
             workers,
             mp_context=multiprocessing.get_context("spawn"),
-            initializer=_start_worker,
+            initializer=start_planner,
             initargs=(os.getpid(),),
         )
     return pool
@@ -78,7 +78,7 @@ def _pool(workers: int) -> ProcessPoolExecutor:
 
 def _pids(pool: ProcessPoolExecutor) -> list[int]:
     """The pool's processes. Python has no public list of them (3.14 adds
-    `terminate_workers` for what `_stop` does); its `_processes` maps pid to process."""
+    `terminate_workers` for what `stop_pool` does); its `_processes` maps pid to process."""
     return list(pool._processes or {})  # noqa: SLF001 (no public list, as said)
 
 
@@ -97,7 +97,7 @@ def _cpu_seconds(pool: ProcessPoolExecutor, now: float) -> float | None:
     return value
 
 
-def _stop(pool: ProcessPoolExecutor) -> None:
+def stop_pool(pool: ProcessPoolExecutor) -> None:
     """End a pool's planners now. A plan they are still making is for a server that is
     stopping (a restarted server plans the turn again), and waiting for it would take
     minutes when they are starved."""
@@ -108,7 +108,7 @@ def _stop(pool: ProcessPoolExecutor) -> None:
 
 
 def _ready() -> None:
-    """A planner's first task: nothing beyond its initializer (`_start_worker`)."""
+    """A planner's first task: nothing beyond its initializer (`start_planner`)."""
 
 
 def warm_planners(workers: int) -> None:
@@ -139,7 +139,7 @@ def close_planners() -> None:
     if _servers == 0:
         _stopped = True  # a seat still thinking must not start new ones
         for pool in _pools.values():
-            _stop(pool)
+            stop_pool(pool)
         _pools.clear()
 
 
@@ -152,7 +152,7 @@ def _exit_with(server: int) -> None:
     os._exit(0)
 
 
-def _start_worker(server: int) -> None:
+def start_planner(server: int) -> None:
     """The planners run on CPU time the rooms do not want (Linux `SCHED_IDLE`). At `nice 10`
     a planner still made its core look busy, so the kernel woke the rooms' shot threads on
     the event loop's core, where they waited behind the loop: 1,000 rooms with 50 against
@@ -189,7 +189,7 @@ async def plan_turn(
             future.cancel()  # the seat stopped thinking (a concession, the room closing)
             raise
         except BrokenProcessPool:
-            if not _stopped:  # else its server stopped it (`_stop`)
+            if not _stopped:  # else its server stopped it (`stop_pool`)
                 log.error("a computer planner process died; %s this time", THREAD_PLAN_NOTE)
                 _pools.pop(workers, None)
         else:

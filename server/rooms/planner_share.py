@@ -38,6 +38,7 @@ class PlannerShare:
     hints_out: int = 0  # hints handed to the planners (running, or queued in the pool)
     waiting: deque[asyncio.Future[None]] = field(default_factory=deque)
     holders: set[Hashable] = field(default_factory=set)  # requesters with a hint asked
+    idle_waiters: list[asyncio.Future[None]] = field(default_factory=list)  # the analyses
 
     @contextlib.contextmanager
     def computer_planning(self) -> Iterator[None]:
@@ -48,6 +49,23 @@ class PlannerShare:
         finally:
             self.computer -= 1
             self._wake()
+            if self.computer == 0:
+                for waiter in self.idle_waiters:
+                    if not waiter.done():
+                        waiter.set_result(None)
+                self.idle_waiters.clear()
+
+    async def computer_idle(self) -> None:
+        """Return once no computer's turn is being planned: the match analyses start each
+        shot only then, never ahead of a room's computer."""
+        while self.computer > 0:
+            waiter: asyncio.Future[None] = asyncio.get_running_loop().create_future()
+            self.idle_waiters.append(waiter)
+            try:
+                await waiter
+            finally:
+                if waiter in self.idle_waiters:
+                    self.idle_waiters.remove(waiter)
 
     def _free(self) -> bool:
         return self.hints_out < HINT_SLOTS and self.computer < max(1, self.slots)

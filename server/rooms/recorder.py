@@ -21,6 +21,7 @@ from server.protocol import ShotPlan
 from server.protocol.plan import motion_text
 from server.rules import Outcome
 from server.store import Database, Repository, StaleOwner
+from server.store.drills import DrillRows
 
 from .room import Room
 from .snapshot import pending_shot, room_snapshot_json
@@ -130,6 +131,13 @@ class StoreObserver:
             lambda repo, e: repo.record_shot(*row, engine=engine, motion=motion, epoch=e),
             "record shot",
         )
+        if room.setup is not None:  # a drill: how it went, for the personal bests
+            d = room.drill
+            self._write(
+                room.room_id,
+                lambda repo, _e: DrillRows(repo).set_score(room.room_id, d.score, d.done, d.won),
+                "drill score",
+            )
         self._scored(room, "shot", outcome)
 
     def outcome(self, room: Room, cause: str, outcome: Outcome) -> None:

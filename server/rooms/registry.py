@@ -12,6 +12,7 @@ from server.config import Settings
 from server.store import RoomSnapshot
 
 from .clock import SYSTEM_CLOCK, Clock, SeedSource
+from .drills import DrillSetup
 from .errors import ActionError
 from .live import LiveRoom
 from .metrics import StreamMetrics
@@ -61,6 +62,7 @@ class RoomRegistry:
         listed: bool = True,
         owner: str | None = None,
         opponent: str | None = None,
+        setup: DrillSetup | None = None,
     ) -> LiveRoom:
         """A new room. `owner` (the client opening it) may hold `max_rooms_per_client`
         rooms at once, so no single client can fill the server; `listed=False` makes a
@@ -85,6 +87,7 @@ class RoomRegistry:
             seed=self.seeds.next(),
             created_at=self.clock.wall(),
             listed=listed,
+            setup=setup,
         )
         if opponent is not None:  # the computer takes the second seat at once
             room.add_computer(opponent)

@@ -23,6 +23,7 @@ from server.protocol.outbound import (
     ChatLine,
     ChatMessage,
     ClockInfo,
+    DrillInfo,
     GraceInfo,
     PlayerInfo,
     RoomInfo,
@@ -31,6 +32,7 @@ from server.protocol.outbound import (
 )
 from server.rules import GAME_KINDS, Match, Outcome, RulesError
 
+from .drills import DrillScore, DrillSetup, scored, set_up
 from .errors import ActionError
 from .tokens import hash_token, new_token, token_matches
 
@@ -97,6 +99,8 @@ class Room:
     created_at: float = 0.0
     listed: bool = True  # False: a private table, reached only through its link
     computer: dict[int, str] = field(default_factory=dict)  # seat -> level it plays at
+    setup: DrillSetup | None = None  # a drill: the table it starts from (practice only)
+    drill: DrillScore = field(default_factory=DrillScore)  # how the drill went so far
     seats: list[Seat | None] = field(init=False)
     match: Match | None = field(default=None, init=False)
     shot: ShotInProgress | None = field(default=None, init=False)
@@ -148,6 +152,8 @@ class Room:
     def _start_when_full(self) -> None:
         if all(self.seats):
             self.match = Match(self.game, self.player_names(), race_to=self.race_to, seed=self.seed)
+            if self.setup is not None:
+                set_up(self.match, self.setup)
 
     def add_computer(self, level: str) -> int:
         """Seat the computer (always connected: it never leaves) at `level`."""
@@ -262,6 +268,7 @@ class Room:
             spectators=self.spectators,
             rematch=sorted(self.rematch_votes),
             abandoned=self.abandoned,
+            drill=None if self.setup is None else drill_info(self.setup, self.drill),
         )
 
     def say(self, seat: int | None, text: str, at: float) -> ChatMessage:
@@ -345,10 +352,13 @@ class Room:
     def apply_shot(self, result: ShotResult) -> Outcome:
         """Judge the simulated shot now (the stream shows it afterwards)."""
         assert self.shot is not None and self.match is not None
+        before = self.match.game.balls
         with _rules():
             outcome = self.match.apply(self.shot.seat, result)
         self.shot.ticks = len(result.frames)
         self.shot.outcome = outcome
+        if self.setup is not None:
+            self.drill = scored(self.setup, self.drill, before, result, outcome)
         return outcome
 
     def abort_shot(self) -> None:
@@ -438,6 +448,21 @@ class Room:
         self.match.rematch()
         self.rematch_votes.clear()
         return True
+
+
+def drill_info(setup: DrillSetup, score: DrillScore) -> DrillInfo:
+    """A drill as `state.room.drill` shows it."""
+    position = setup.kind == "position"
+    return DrillInfo(
+        kind=setup.kind,
+        match=setup.match_id,
+        n=setup.n,
+        par=setup.par,
+        made=(score.score == 1) if position and score.done else None,
+        score=score.score,
+        done=score.done,
+        won=score.won,
+    )
 
 
 def _check_game(match: Match, game: int | None) -> None:

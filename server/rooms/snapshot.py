@@ -18,6 +18,7 @@ from server.engine import Shot
 from server.rules import Match
 from server.store import PendingShot
 
+from .drills import DrillScore, DrillSetup
 from .room import Room, Seat
 
 
@@ -47,6 +48,8 @@ class SavedRoomData:
     listed: bool = True
     computer: dict[int, str] = field(default_factory=dict)  # seat -> level
     shots_by_seat: list[int] | None = None  # None: saved before it was kept
+    setup: DrillSetup | None = None  # a drill's table (rooms/drills.py)
+    drill: DrillScore | None = None  # and how it went so far
 
 
 @dataclass(frozen=True)
@@ -95,6 +98,8 @@ def _saved(room: Room, match_id: int | None, pending: PendingShot | None) -> Sav
         listed=room.listed,
         computer=dict(room.computer),
         shots_by_seat=by_seat,
+        setup=room.setup,
+        drill=room.drill if room.setup is not None else None,
     )
 
 
@@ -111,9 +116,11 @@ def room_from_snapshot(data: dict[str, Any]) -> SavedRoom:
         seed=saved.seed,
         created_at=saved.created_at,
         listed=saved.listed,
+        setup=saved.setup,
     )
     room.seats = [None if s is None else Seat(s.name, s.token_hash) for s in saved.seats]
     room.computer = dict(saved.computer)
+    room.drill = saved.drill or DrillScore()
     for seat in room.computer:  # the computer never leaves
         seat_info = room.seats[seat]
         if seat_info is not None:

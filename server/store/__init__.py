@@ -35,7 +35,7 @@ The API (each `Repository` method is one transaction, run through the `Database`
     repo.save_room(room_id, snapshot_json, *, epoch=None)
     repo.delete_room(room_id, *, epoch=None)
     repo.room(room_id) -> RoomSnapshot | None    repo.rooms() -> list[RoomSnapshot]
-    repo.match(id)  repo.recent_matches(limit, status)  repo.games(id)  repo.shots(id)
+    repo.match(id)  repo.recent_matches(limit, status, room_id)  repo.games(id)  repo.shots(id)
     repo.shot(id, n)
     with repo.transaction(): ...                 # several calls as one transaction
 

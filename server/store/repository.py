@@ -241,8 +241,13 @@ class Repository:
         rows = self._matches(self.sql.match, {"key_match": match_id})
         return rows[0] if rows else None
 
-    def recent_matches(self, limit: int = 20, status: str | None = None) -> list[MatchRecord]:
-        """Newest first; `status` filters ("playing", "finished", "abandoned")."""
+    def recent_matches(
+        self, limit: int = 20, status: str | None = None, room_id: str | None = None
+    ) -> list[MatchRecord]:
+        """Newest first; `status` filters ("playing", "finished", "abandoned"), or
+        `room_id` (the matches of one room: its first match and its rematches)."""
+        if room_id is not None:
+            return self._matches(self.sql.recent_room, {"key_limit": limit, "key_room": room_id})
         if status is None:
             return self._matches(self.sql.recent, {"key_limit": limit})
         return self._matches(self.sql.recent_status, {"key_limit": limit, "key_status": status})

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from sqlalchemy import (
     BigInteger,
+    Boolean,
     Column,
     Double,
     ForeignKey,
@@ -21,6 +22,7 @@ from sqlalchemy import (
     Table,
     Text,
     UniqueConstraint,
+    false,
 )
 
 metadata = MetaData()
@@ -189,4 +191,31 @@ ceremonies = Table(  # WebAuthn challenges waiting for their answer (one use eac
     Column("challenge", LargeBinary, nullable=False),
     Column("player_id", Text),  # registration: who asked; sign-in: none
     Column("expires_at", Double, nullable=False),
+)
+
+analyses = Table(  # the analysis of a finished match (server.ai.analysis), stored once
+    "analyses",
+    metadata,
+    Column("match_id", Integer, ForeignKey("matches.id"), primary_key=True, autoincrement=False),
+    Column("status", Text, nullable=False),  # queued | running | ready | failed
+    Column("requested_at", Double, nullable=False),
+    Column("claimed_by", Text),  # the process analysing it (running), for people
+    Column("claimed_at", Double),  # a claim older than the stale time is taken over
+    Column("result", Text),  # JSON of the MatchAnalysis (ready), or the error (failed)
+    Column("finished_at", Double),
+    Index("analyses_queue", "status", "requested_at"),
+)
+
+drills = Table(  # drills' practice rooms (server.rooms.drills) and how each went
+    "drills",
+    metadata,
+    Column("room_id", Text, primary_key=True),
+    Column("kind", Text, nullable=False),  # position | ghost
+    Column("match_id", Integer, ForeignKey("matches.id")),  # position: the shot's match
+    Column("n", Integer),  # position: the shot
+    Column("par", Double),  # position: the pro's chance from there
+    Column("created_at", Double, nullable=False),
+    Column("score", Integer),  # position: 1 made, 0 missed; ghost: balls pocketed
+    Column("done", Boolean, nullable=False, server_default=false()),  # nothing more to score
+    Column("won", Boolean, nullable=False, server_default=false()),  # ghost: rack cleared
 )

@@ -42,6 +42,7 @@ class Statements:
     match: Any
     recent: Any
     recent_status: Any
+    recent_room: Any
     games: Any
     shots: Any
     shot: Any
@@ -102,6 +103,9 @@ def statements(dialect: str) -> Statements:
         match=with_counts.where(matches.c.id == match_id),
         recent=with_counts.order_by(*newest).limit(bindparam("key_limit")),
         recent_status=with_counts.where(matches.c.status == bindparam("key_status"))
+        .order_by(*newest)
+        .limit(bindparam("key_limit")),
+        recent_room=with_counts.where(matches.c.room_id == room_id)
         .order_by(*newest)
         .limit(bindparam("key_limit")),
         games=select(games).where(games.c.match_id == match_id).order_by(games.c.n),

@@ -7,6 +7,7 @@ import hashlib
 import re
 import time
 
+import httpx
 from playwright.sync_api import Error, Locator, Page
 
 READY = "window.__pool && window.__pool.ready"
@@ -94,3 +95,27 @@ def aim_and_shoot(page: Page, target: tuple[float, float], pull_px: float = 160)
     page.mouse.down()
     page.mouse.move(tx - pull_px * dx / n, ty - pull_px * dy / n, steps=10)
     page.mouse.up()
+
+
+def create(server: str, **body: object) -> str:
+    """A listed room made over HTTP (the lobby offers no 3 s clock); returns its id."""
+    reply = httpx.post(f"{server}/api/rooms", json={"game": "eight_ball", **body}, timeout=20)
+    reply.raise_for_status()
+    return reply.json()["room_id"]
+
+
+def sit(page: Page, server: str, room_id: str, name: str) -> None:
+    """Open the room's link and take a seat through the join dialog."""
+    page.goto(f"{server}/r/{room_id}")
+    page.get_by_test_id("join-name").fill(name)
+    page.get_by_test_id("join").click()
+    wait_for(page, "window.__pool && window.__pool.state.me.role === 'player'")
+
+
+def apex(page: Page) -> tuple[float, float]:
+    """The rack's apex ball (on the foot spot): where a break aims."""
+    foot = page.evaluate("window.__pool.state.table.foot_spot")
+    ball = page.evaluate(
+        "(fx) => window.__pool.balls.find((b) => b.id !== 0 && Math.abs(b.x - fx) < 0.01)", foot[0]
+    )
+    return ball["x"], ball["y"]

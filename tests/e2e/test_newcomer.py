@@ -33,7 +33,7 @@ from tests.support.messages import JsonSocket, receive_until
 from tests.support.rooms import play_shot, seated_room
 
 from .conftest import E2E_SETTINGS
-from .helpers import aim_and_shoot, table_point, wait_for, wait_ready
+from .helpers import aim_and_shoot, apex, create, sit, table_point, wait_for, wait_ready
 from .test_history import REPLAY_READY, play_a_short_match
 
 pytestmark = pytest.mark.browser
@@ -53,21 +53,6 @@ def server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
         yield f"http://{address}"
 
 
-def create(server: str, **body: object) -> str:
-    """A listed room made over HTTP (the lobby offers no 3 s clock); returns its id."""
-    reply = httpx.post(f"{server}/api/rooms", json={"game": "eight_ball", **body}, timeout=20)
-    reply.raise_for_status()
-    return reply.json()["room_id"]
-
-
-def sit(page: Page, server: str, room_id: str, name: str) -> None:
-    """Open the room's link and take a seat through the join dialog."""
-    page.goto(f"{server}/r/{room_id}")
-    page.get_by_test_id("join-name").fill(name)
-    page.get_by_test_id("join").click()
-    wait_for(page, "window.__pool && window.__pool.state.me.role === 'player'")
-
-
 def two_players(new_page, server: str, **room: object) -> tuple[Page, Page, str]:
     room_id = create(server, **room)
     ana, ben = new_page(), new_page()
@@ -76,14 +61,6 @@ def two_players(new_page, server: str, **room: object) -> tuple[Page, Page, str]
     wait_ready(ana, "aiming")
     wait_ready(ben, "aiming")
     return ana, ben, room_id
-
-
-def apex(page: Page) -> tuple[float, float]:
-    foot = page.evaluate("window.__pool.state.table.foot_spot")
-    ball = page.evaluate(
-        "(fx) => window.__pool.balls.find((b) => b.id !== 0 && Math.abs(b.x - fx) < 0.01)", foot[0]
-    )
-    return ball["x"], ball["y"]
 
 
 def test_a_newcomer_is_shown_the_gesture_and_the_clock_does_not_take_the_break(

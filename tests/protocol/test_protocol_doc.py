@@ -42,8 +42,12 @@ import pytest
 from fastapi.routing import APIRoute
 from pydantic import BaseModel, TypeAdapter, ValidationError
 
+from server.api.accounts import router as accounts_router
+from server.api.analysis import router as analysis_router
+from server.api.drills import router as drills_router
 from server.api.matches import router as matches_router
 from server.api.meta import router as meta_router
+from server.api.passkeys import router as passkeys_router
 from server.api.players import router as players_router
 from server.api.rooms import router as rooms_router
 from server.api.schemas import ErrorResponse
@@ -217,13 +221,20 @@ def required_names(cls: Any, seen: set[Any]) -> dict[str, str]:
     return names
 
 
+ROUTERS = (
+    meta_router,
+    rooms_router,
+    matches_router,
+    analysis_router,
+    drills_router,
+    players_router,
+    accounts_router,
+    passkeys_router,
+)
+
+
 def api_routes() -> list[APIRoute]:
-    return [
-        r
-        for router in (meta_router, rooms_router, matches_router, players_router)
-        for r in router.routes
-        if isinstance(r, APIRoute)
-    ]
+    return [r for router in ROUTERS for r in router.routes if isinstance(r, APIRoute)]
 
 
 def route_key(method: str, path: str) -> str:
@@ -234,6 +245,10 @@ def route_models(route: APIRoute) -> list[type[BaseModel]]:
     models: list[type[BaseModel]] = [ErrorResponse]
     if isinstance(route.response_model, type) and issubclass(route.response_model, BaseModel):
         models.append(route.response_model)
+    for answer in route.responses.values():  # another status's own body (e.g. a 202)
+        model = answer.get("model")
+        if isinstance(model, type) and issubclass(model, BaseModel) and model not in models:
+            models.append(model)
     for param in route.dependant.body_params:
         models.extend(nested(param.field_info.annotation))
     return models

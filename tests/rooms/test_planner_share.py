@@ -182,3 +182,24 @@ def test_each_server_loop_has_its_own_share():
 
     one, two = asyncio.run(get(1)), asyncio.run(get(2))
     assert one is not two and two.slots == 2
+
+
+def test_an_analysis_waits_while_any_computer_plans():
+    """`computer_idle` returns at once with no computer planning, and otherwise only once
+    the last computer turn being planned is done."""
+
+    async def main():
+        share = PlannerShare(slots=1)
+        await asyncio.wait_for(share.computer_idle(), 1.0)
+        with share.computer_planning():
+            with share.computer_planning():
+                waiting = asyncio.ensure_future(share.computer_idle())
+                await settle()
+                assert not waiting.done()
+            await settle()
+            assert not waiting.done()  # one computer still plans
+        await settle()
+        assert waiting.done()
+        assert not share.idle_waiters
+
+    asyncio.run(main())

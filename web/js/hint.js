@@ -135,8 +135,7 @@ export class ShotHint {
   }
 
   /**
-   * Draw the plan: a ghost cue ball where it would be placed, the aim line to the ghost
-   * ball (with the squirt of side spin) and the object ball's path, and the cue drawn back.
+   * Draw the plan over the table (`drawPlan`).
    * @param {CanvasRenderingContext2D} ctx
    * @param {import('./geometry.js').View} view
    * @param {import('./geometry.js').Table} table
@@ -145,31 +144,46 @@ export class ShotHint {
    * @param {{cue_mass_ratio: number, max_speed: number}} limits
    */
   draw(ctx, view, table, balls, cue, limits) {
-    const plan = this.plan;
-    if (!plan) return;
-    /** @type {[number, number] | null} */
-    const from = plan.place ?? cue;
-    if (!from) return;
-    const others = balls.filter((b) => b.id !== 0);
-    if (plan.place) {
-      const [x, y] = view.toScreen(from[0], from[1]);
-      ctx.save();
-      ctx.fillStyle = 'rgba(255,255,255,0.35)';
-      ctx.beginPath();
-      ctx.arc(x, y, table.ball_radius * view.scale, 0, Math.PI * 2);
-      ctx.fill();
-      ctx.restore();
-    }
-    const path = plan.angle + squirt(plan.tip[0], limits.cue_mass_ratio);
-    const guide = castGuide(table, others, from, path);
-    let objectEnd = null;
-    if (guide.kind === 'ball' && guide.objectDir && guide.hitId !== null) {
-      const r = table.ball_radius;
-      const start = /** @type {[number, number]} */ ([guide.contact[0] + guide.objectDir[0] * 2 * r,
-        guide.contact[1] + guide.objectDir[1] * 2 * r]);
-      objectEnd = objectPath(table, others, start, guide.objectDir, [0, guide.hitId]).end;
-    }
-    drawGuide(ctx, view, table, from, guide, objectEnd);
-    drawCue(ctx, view, table, from, plan.angle, powerFromSpeed(plan.speed, limits.max_speed), 0.6);
+    if (this.plan) drawPlan(ctx, view, table, balls, cue, limits, this.plan);
   }
+}
+
+/**
+ * Draw a planned shot: a ghost cue ball where it would be placed, the aim line to the ghost
+ * ball (with the squirt of side spin) and the object ball's path, and the cue drawn back.
+ * The replay's analysis draws the pro's best shot with it too.
+ * @param {CanvasRenderingContext2D} ctx
+ * @param {import('./geometry.js').View} view
+ * @param {import('./geometry.js').Table} table
+ * @param {{id: number, x: number, y: number}[]} balls
+ * @param {[number, number] | null} cue where the cue ball is now
+ * @param {{cue_mass_ratio: number, max_speed: number}} limits
+ * @param {{place: [number, number] | null, angle: number, speed: number, tip: [number, number]}} plan
+ * @param {number} [cueAlpha] how opaque the cue is drawn
+ */
+export function drawPlan(ctx, view, table, balls, cue, limits, plan, cueAlpha = 0.6) {
+  /** @type {[number, number] | null} */
+  const from = plan.place ?? cue;
+  if (!from) return;
+  const others = balls.filter((b) => b.id !== 0);
+  if (plan.place) {
+    const [x, y] = view.toScreen(from[0], from[1]);
+    ctx.save();
+    ctx.fillStyle = 'rgba(255,255,255,0.35)';
+    ctx.beginPath();
+    ctx.arc(x, y, table.ball_radius * view.scale, 0, Math.PI * 2);
+    ctx.fill();
+    ctx.restore();
+  }
+  const path = plan.angle + squirt(plan.tip[0], limits.cue_mass_ratio);
+  const guide = castGuide(table, others, from, path);
+  let objectEnd = null;
+  if (guide.kind === 'ball' && guide.objectDir && guide.hitId !== null) {
+    const r = table.ball_radius;
+    const start = /** @type {[number, number]} */ ([guide.contact[0] + guide.objectDir[0] * 2 * r,
+      guide.contact[1] + guide.objectDir[1] * 2 * r]);
+    objectEnd = objectPath(table, others, start, guide.objectDir, [0, guide.hitId]).end;
+  }
+  drawGuide(ctx, view, table, from, guide, objectEnd);
+  drawCue(ctx, view, table, from, plan.angle, powerFromSpeed(plan.speed, limits.max_speed), cueAlpha);
 }

@@ -247,6 +247,7 @@ export function renderHud(state, now) {
   setText($('role'), state.me.role === 'player' ? `seat ${(state.me.seat ?? 0) + 1}` : 'spectator');
   renderRematch(state);
   renderWaysOn(state);
+  renderDrill(state);
   renderActions(state);
   renderWinner(winner);
   const error = state.error && now - state.error.at < 4 ? state.error.message : '';
@@ -408,8 +409,43 @@ function renderRematch(state) {
 }
 
 /**
- * The ways on from a finished game, next to Rematch: a new opponent by Play now (the same
- * game when it is ranked, else 8-ball), and the lobby.
+ * A drill's table (`state.room.drill`): where it comes from, its par, and once the first
+ * shot is played whether it made the position; a link back to the match's analysis.
+ * @param {import('./state.js').RoomState} state
+ */
+function renderDrill(state) {
+  const drill = state.room?.drill;
+  setHidden($('drill'), !drill);
+  if (!drill) return;
+  setHidden($('drill-back'), drill.kind !== 'position');
+  if (drill.kind === 'ghost') {
+    setText($('drill-text'), ghostWords(drill));
+    $('drill-text').dataset.made = drill.done ? String(drill.won) : '';
+    return;
+  }
+  const par = `Par: the strongest computer level pots from here ${Math.round(drill.par * 100)} % of the time.`;
+  const result = drill.made === null || drill.made === undefined ? `Drill: shot ${drill.n} again. ${par}`
+    : drill.made ? `Made it: a ball pocketed without a foul. ${par}` : `Not this time. ${par}`;
+  setText($('drill-text'), result);
+  $('drill-text').dataset.made = drill.made === null || drill.made === undefined ? '' : String(drill.made);
+  const back = `/m/${drill.match}?analyse=1`;
+  const link = $('drill-back');
+  if (link.getAttribute('href') !== back) link.setAttribute('href', back);
+}
+
+/**
+ * Ghost 9-ball's words: the rule, then the balls pocketed and who won the rack.
+ * @param {{score: number, done: boolean, won: boolean}} drill
+ */
+function ghostWords(drill) {
+  if (drill.won) return `You beat the ghost: all ${drill.score} balls pocketed!`;
+  if (drill.done) return `The ghost wins the rack: ${drill.score} of 9 pocketed. Another rack: Ghost 9-ball drill in the lobby.`;
+  return `Ghost 9-ball: hit the lowest ball first and pocket a ball every shot; a miss gives the ghost the rack. Pocketed: ${drill.score} of 9.`;
+}
+
+/**
+ * The ways on from a finished game, next to Rematch: its analysis (not for practice), a new
+ * opponent by Play now (the same game when it is ranked, else 8-ball), and the lobby.
  * @param {import('./state.js').RoomState} state
  */
 function renderWaysOn(state) {
@@ -420,6 +456,8 @@ function renderWaysOn(state) {
   if (again.getAttribute('href') !== href) again.setAttribute('href', href);
   setHidden(again, !ended);
   setHidden($('end-lobby'), !ended);
+  const played = state.phase === 'over' && !state.room?.abandoned;
+  setHidden($('analyse'), !(played && state.room?.game !== 'practice'));
 }
 
 /**

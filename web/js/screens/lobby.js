@@ -100,6 +100,12 @@ export function startLobby() {
     opponent: $select('computer-level').value || 'beginner' }));
   $('practice').addEventListener('click', () => openTable({ game: 'practice', raceTo: 1,
     listed: true }));
+  $('ghost-drill').addEventListener('click', async () => {
+    try {
+      const drill = await request('POST', '/api/drills', { kind: 'ghost' });
+      location.assign(drill.url);
+    } catch (e) { $('lobby-error').textContent = e instanceof Error ? e.message : String(e); }
+  });
   const refresh = async () => {
     try {
       const { rooms } = await api.listRooms();

@@ -1,7 +1,8 @@
 /**
  * A player's profile: `/profile` (your own: the name can be changed, and is
  * used at every table from then on; the account part, screens/account.js) or `/p/{player_id}`
- * (anyone's). Ratings per game (provisional ones marked), the recent ranked matches with
+ * (anyone's). Ratings per game (provisional ones marked), the accuracy in the analysed
+ * matches (a small chart), the recent ranked matches with
  * their rating change, and every recent match in the player's seats, each with a link to
  * its replay. Every name is written as text, never as markup.
  */
@@ -44,7 +45,8 @@ export async function startProfile(playerId) {
       'Sign in to another player'));
   }
   root.replaceChildren(nav, headPanel(profile, error), ratingsPanel(profile),
-    recentPanel(profile.recent), matchesPanel(profile.matches));
+    accuracyPanel(profile.matches, profile.drills), recentPanel(profile.recent),
+    matchesPanel(profile.matches));
   if (profile.me) root.insertBefore(accountPanel(profile), root.children[2]);
 }
 
@@ -133,6 +135,62 @@ function recentPanel(matches) {
   recent.append(list);
   if (!matches.length) recent.append(el('p', { class: 'muted' }, 'No ranked match yet.'));
   return recent;
+}
+
+const SVG = 'http://www.w3.org/2000/svg';
+const CHART_W = 320;
+const CHART_H = 80;
+
+/**
+ * The player's accuracy (0-100) in their analysed recent matches, oldest to newest, as a
+ * small line chart (a match not analysed is left out).
+ * With the personal bests of the position drills under it.
+ * @param {any[]} matches newest first
+ * @param {{tries: number, made: number, best_run: number, ghost_racks?: number,
+ *   ghost_cleared?: number, ghost_best?: number} | null | undefined} drills
+ */
+function accuracyPanel(matches, drills) {
+  const panel = el('section', { class: 'panel' });
+  panel.append(el('h2', {}, 'Accuracy and drills'));
+  if (drills?.tries) {
+    panel.append(el('p', { class: 'small', 'data-testid': 'profile-drills' },
+      `Position drills: made ${drills.made} of ${drills.tries}; best run ${drills.best_run} in a row.`));
+  }
+  if (drills?.ghost_racks) {
+    panel.append(el('p', { class: 'small', 'data-testid': 'profile-ghost' },
+      `Ghost 9-ball: best ${drills.ghost_best} of 9 pocketed; the ghost beaten ${
+        drills.ghost_cleared} of ${drills.ghost_racks} racks.`));
+  }
+  const points = matches.filter((m) => typeof m.accuracy === 'number').reverse()
+    .map((m) => /** @type {number} */ (m.accuracy));
+  if (!points.length) {
+    panel.append(el('p', { class: 'muted', 'data-testid': 'accuracy-none' },
+      'No analysed match yet: press Analyse after a game, or on its replay.'));
+    return panel;
+  }
+  const chart = document.createElementNS(SVG, 'svg');
+  chart.setAttribute('viewBox', `0 0 ${CHART_W} ${CHART_H}`);
+  chart.setAttribute('class', 'accuracy-chart');
+  chart.setAttribute('data-testid', 'accuracy-chart');
+  chart.setAttribute('role', 'img');
+  chart.setAttribute('aria-label', `Accuracy in the last ${points.length} analysed matches`);
+  const step = points.length > 1 ? (CHART_W - 8) / (points.length - 1) : 0;
+  const xy = points.map((a, i) => [4 + i * step, CHART_H - 4 - (a / 100) * (CHART_H - 8)]);
+  const line = document.createElementNS(SVG, 'polyline');
+  line.setAttribute('points', xy.map(([x, y]) => `${x.toFixed(1)},${y.toFixed(1)}`).join(' '));
+  chart.append(line);
+  for (const [x, y] of xy) {
+    const dot = document.createElementNS(SVG, 'circle');
+    dot.setAttribute('cx', x.toFixed(1));
+    dot.setAttribute('cy', y.toFixed(1));
+    dot.setAttribute('r', '3');
+    chart.append(dot);
+  }
+  const last = points[points.length - 1];
+  panel.append(chart, el('p', { class: 'small muted', 'data-testid': 'accuracy-last' },
+    `Last analysed match: ${last.toFixed(1)} · mean of ${points.length}: ${
+      (points.reduce((a, b) => a + b, 0) / points.length).toFixed(1)}`));
+  return panel;
 }
 
 /**

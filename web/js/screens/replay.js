@@ -8,13 +8,17 @@
  * playback with frames, sounds and pocketed balls, its drawing), so a replay looks and
  * sounds exactly like the game did. The stream's tick rate comes with the match (`stream`).
  * Shots follow each other while playing; Stop puts the shot back at its start;
- * previous/next move by one shot.
+ * previous/next move by one shot. "Analyse" shows the match's analysis (analysis.js): the
+ * verdict strip, the accuracy per player, and the pro's best shot drawn over the table
+ * beside the cue as it was lined up for the shot played.
  */
 
 import { api, memory, readNdjson } from '../net.js';
 import { initialState, decodeBalls } from '../state.js';
 import { readStream, DEFAULT_LIMITS } from '../limits.js';
 import { drawCue } from '../render.js';
+import { drawPlan } from '../hint.js';
+import { ReplayAnalysis } from '../analysis.js';
 import { TableView } from '../tableview.js';
 import { $, $select, bindMute, setText, matchLine } from '../ui.js';
 import { startLoop } from '../loop.js';
@@ -31,7 +35,9 @@ export function startReplay(matchId) {
     replay.update(dt, now);
     replay.draw(now);
   });
-  replay.load();
+  replay.load().then(() => {
+    if (new URLSearchParams(location.search).get('analyse') === '1') replay.analysis.start();
+  });
   /** @type {any} */ (window).__replay = testHook(replay);
 }
 
@@ -59,6 +65,11 @@ function testHook(replay) {
     get balls() { return replay.view.ballList(); },
     get ready() { return replay.view.ready; },
     get cueDrawn() { return !replay.struck; },
+    get analysis() {
+      const { data } = replay.analysis;
+      return { ready: Boolean(data), verdicts: data?.shots.map((s) => s.verdict) ?? [],
+        shot: replay.analysis.current(), bestDrawn: replay.bestDrawn };
+    },
   };
 }
 
@@ -85,6 +96,11 @@ class Replay {
     this.restSince = null;
     this.struck = false; // the shot shown has started moving (the cue is drawn until then)
     this.playButton = $('replay-play');
+    this.analysis = new ReplayAnalysis(matchId, (n) => {
+      const k = this.match?.shots.findIndex((/** @type {any} */ s) => s.n === n) ?? -1;
+      if (k >= 0) this.show(k);
+    });
+    this.bestDrawn = false; // the pro's best shot was drawn over the shot shown
   }
 
   async load() {
@@ -155,6 +171,8 @@ class Replay {
     setText($('replay-shooter'), `${players[shot.seat] ?? `Player ${shot.seat + 1}`} to play`);
     setText($('replay-at'), `game ${shot.game} · ${scoreBefore(match, shot)}`);
     this.struck = false;
+    this.bestDrawn = false;
+    this.analysis.select(shot.n);
     setText($('replay-outcome'), '');
     if (this.playing) this.play(shot);
   }
@@ -218,6 +236,12 @@ class Replay {
       const power = Math.min(1, (shot.shot.speed ?? 0) / DEFAULT_LIMITS.max_speed);
       drawCue(frame.ctx, frame.view, match.geometry, [cueBall.x, cueBall.y], shot.shot.angle,
         power * 0.5);
+      const best = this.analysis.best();
+      if (best) {
+        drawPlan(frame.ctx, frame.view, match.geometry, view.ballList(), [cueBall.x, cueBall.y],
+          DEFAULT_LIMITS, best, 0.35);
+        this.bestDrawn = true;
+      }
     }
   }
 }

@@ -5,7 +5,7 @@
  * table (`LiveTable`) or a message it sends.
  */
 
-import { memory } from '../../net.js';
+import { memory, request } from '../../net.js';
 import { $, $input, bindMute } from '../../ui.js';
 import { icon } from '../../icons.js';
 
@@ -69,10 +69,23 @@ function bindFineAim(live) {
   }
 }
 
+/**
+ * The replay of the room's newest match, its analysis asked for at once.
+ * @param {string} roomId
+ */
+async function openAnalysis(roomId) {
+  try {
+    const { matches } = await request('GET',
+      `/api/matches?room=${encodeURIComponent(roomId)}&limit=1`);
+    if (matches.length) location.assign(`/m/${matches[0].id}?analyse=1`);
+  } catch { /* the button stays; pressing it again asks again */ }
+}
+
 /** @param {LiveTable} live */
 function bindButtons(live) {
   bindMute($('mute'), live.audio, (muted) => memory.setMuted(muted));
   $('rematch').addEventListener('click', () => live.send({ type: 'rematch' }));
+  $('analyse').addEventListener('click', () => { openAnalysis(live.roomId); });
   $('concede').addEventListener('click', () => {
     // Naming the game makes a concession sent just as the frame ended harmless.
     if (confirm('Concede this frame?')) live.send({ type: 'concede', game: live.currentGame() });
