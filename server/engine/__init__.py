@@ -9,7 +9,16 @@ from .balls import CUE, BallSet, MotionState
 from .params import DEFAULT_PARAMS, PhysicsParams
 from .rack import rack, rack_slots
 from .results import Event, EventKind, Frame, FrameSequence, Settled, ShotResult
-from .shot import MAX_SPEED, MAX_TIP, Shot
+from .shot import (
+    MAX_ELEVATION,
+    MAX_SPEED,
+    MAX_TIP,
+    Miscue,
+    Shot,
+    check_stroke,
+    cue_offset,
+    tip_seen_level,
+)
 from .simulate import (
     DEFAULT_TICK,
     TICK_HZ,
@@ -32,6 +41,7 @@ __all__ = [
     "DEFAULT_PARAMS",
     "DEFAULT_TICK",
     "ENGINE_VERSION",
+    "MAX_ELEVATION",
     "MAX_SPEED",
     "MAX_TIP",
     "PHYSICS_REVISION",
@@ -42,6 +52,7 @@ __all__ = [
     "EventKind",
     "Frame",
     "FrameSequence",
+    "Miscue",
     "MotionState",
     "PhysicsParams",
     "Pocket",
@@ -52,6 +63,8 @@ __all__ = [
     "Table",
     "Tolerance",
     "Trace",
+    "check_stroke",
+    "cue_offset",
     "engine_version",
     "rack",
     "rack_slots",
@@ -61,4 +74,5 @@ __all__ = [
     "simulate_traced",
     "step",
     "strike",
+    "tip_seen_level",
 ]
