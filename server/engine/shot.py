@@ -14,14 +14,15 @@ where m_end is the cue's end mass (`PhysicsParams.cue_mass_ratio` = m_ball / m_e
 ball travels along the squirted line, and its spin is r x J / I for that impulse J (the
 sideways part of J turns a little of the side spin back).
 
-Elevation (the cue's angle above the bed, Alciatore TP A-30 "cue strike with an elevated
-cue", the model pooltool 0.6.0's `theta` follows): the impulse runs along the cue's axis,
-J = m V (cos(t) e - sin(t) z), so the ball leaves at V cos(t) along the squirted line and
-the downward part goes into the slate; the spin is r x J / I in three dimensions, which
-tilts its axis: side spin with elevation curves the path through the cloth's friction
-(swerve, masse). The tip offset is where the tip meets the ball, seen from behind at the
-bed's level; the cue reaches it without miscueing only when its axis passes within
-`MAX_TIP` of the centre (`cue_offset`): a raised cue must strike higher on the ball.
+Elevation (the cue's angle above the bed; Alciatore, TP A.30 "the effect of cue tip offset,
+cue weight, and cue speed on cue ball speed and spin", the model pooltool 0.6.0's `theta`
+follows): the impulse runs along the cue's axis, J = m V (cos(t) e - sin(t) z), so the
+ball leaves at V cos(t) along the squirted line and the downward part goes into the
+slate; the spin is r x J / I in three dimensions, which tilts its axis: side spin with
+elevation curves the path through the cloth's friction (swerve, masse). The tip offset is
+where the tip meets the ball, seen from behind at the bed's level; the cue reaches it
+without miscueing only when its axis passes within `MAX_TIP` of the centre
+(`cue_offset`): a raised cue must strike higher on the ball.
 """
 
 from __future__ import annotations
@@ -51,10 +52,10 @@ def cue_offset(tip: tuple[float, float], elevation: float) -> float:
     the ball at `tip` (seen from behind at the bed's level) with the cue raised by
     `elevation`; inf when no cue from that side can touch that point.
 
-    The miscue limit (Alciatore, "The Illustrated Principles of Pool and Billiards" and
-    TP A-7: a tip miscues beyond about half a radius of offset, i.e. when the contact
-    normal is more than ~30 degrees off the cue's axis) applies to this distance. With
-    the contact point r = (side, -c, height) in the ball's frame (c the depth behind the
+    The miscue limit (Alciatore, "The Illustrated Principles of Pool and Billiards": a
+    tip miscues beyond about half a radius of offset, where the contact normal is ~30
+    degrees off the cue's axis; MAX_TIP since the level strike) applies to this distance.
+    With the contact point r = (side, -c, height) in the ball's frame (c the depth behind the
     centre) and the cue along u = (0, cos t, -sin t), the axis passes at sqrt(1 - k^2)
     with k = -r.u = c cos t + height sin t: at t = 0 that is |tip|; a tip below the
     centre with a steep cue gives k <= 0 or a large offset (the cue would dig under the
