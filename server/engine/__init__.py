@@ -8,7 +8,7 @@ ball, the knots of its exact motion) in the same compiled call that simulates it
 from .balls import CUE, BallSet, MotionState
 from .params import DEFAULT_PARAMS, PhysicsParams
 from .rack import rack, rack_slots
-from .results import Event, EventKind, Frame, FrameSequence, Settled, ShotResult
+from .results import Event, EventKind, FlightKind, Frame, FrameSequence, Settled, ShotResult
 from .shot import (
     MAX_ELEVATION,
     MAX_SPEED,
@@ -50,6 +50,7 @@ __all__ = [
     "Cushion",
     "Event",
     "EventKind",
+    "FlightKind",
     "Frame",
     "FrameSequence",
     "Miscue",

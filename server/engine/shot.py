@@ -73,7 +73,10 @@ def cue_offset(tip: tuple[float, float], elevation: float) -> float:
 def tip_seen_level(along_cue: tuple[float, float], elevation: float) -> tuple[float, float]:
     """The `tip` (seen from behind at the bed's level) of the point the tip meets when
     seen along the cue at `along_cue` = (side, height): pooltool's (a, b) with its theta
-    (mirrored: its a > 0 is left). Any |along_cue| <= MAX_TIP passes `check_stroke`."""
+    (mirrored: its a > 0 is left). Any |along_cue| <= MAX_TIP passes `check_stroke`,
+    when the point is behind the ball's top (cos(t) depth >= sin(t) height along the cue:
+    a steep cue striking high along itself meets the ball's front, which no tip seen from
+    behind names)."""
     side, height = along_cue
     depth = math.sqrt(max(1.0 - side * side - height * height, 0.0))
     return side, math.sin(elevation) * depth + math.cos(elevation) * height

@@ -23,6 +23,7 @@ from server.codec import from_data, from_json, to_data, to_json
 from server.engine import (
     BALL_MASS,
     BALL_RADIUS,
+    DEFAULT_PARAMS,
     MAX_ELEVATION,
     MAX_TIP,
     BallSet,
@@ -41,6 +42,7 @@ TICK = 1 / 120
 START = (0.3, 1.1)
 # (elevation degrees, side along the cue, speed m/s) -> pooltool 0.6.0's offset (m) 1 m on.
 POOLTOOL_OFFSET_AT_1M = {(60, 0.5, 2.0): -0.6814, (30, 0.5, 3.0): -0.0789, (15, 0.5, 2.0): -0.0624}
+MASSE = (60, 0.5, 2.0)
 
 
 def stroke(degrees: float, side: float, speed: float, angle: float = 0.0) -> Shot:
@@ -111,8 +113,9 @@ def test_a_tip_below_centre_with_a_steep_cue_is_a_miscue():
     st.floats(0.0, MAX_ELEVATION),
 )
 def test_every_tip_within_half_a_radius_seen_along_the_cue_is_playable(a, b, elevation):
-    if math.hypot(a, b) > MAX_TIP:
-        return
+    depth = math.sqrt(1 - a * a - b * b)
+    if math.hypot(a, b) > MAX_TIP or math.cos(elevation) * depth < math.sin(elevation) * b:
+        return  # off the disc, or a contact past the ball's top (no tip seen from behind)
     tip = tip_seen_level((a, b), elevation)
     assert cue_offset(tip, elevation) == pytest.approx(math.hypot(a, b), abs=1e-7)
     Shot(0.0, 1.0, tip, elevation)
@@ -142,13 +145,18 @@ def test_side_spin_with_elevation_tilts_the_spin_axis_forward():
     assert abs(lx) < 1e-9
 
 
-@pytest.mark.parametrize("case", sorted(POOLTOOL_OFFSET_AT_1M))
-def test_masse_and_swerve_curve_as_far_as_pooltools_within_a_quarter(table, case):
-    degrees, side, speed = case
-    offset = offset_down_the_line(table, stroke(degrees, side, speed), 1.0)
-    expected = POOLTOOL_OFFSET_AT_1M[case]
-    assert offset == pytest.approx(expected, rel=0.25)
+def test_a_60_degree_masse_curves_as_far_as_pooltools_within_a_quarter(table):
+    offset = offset_down_the_line(table, stroke(*MASSE), 1.0)
+    assert offset == pytest.approx(POOLTOOL_OFFSET_AT_1M[MASSE], rel=0.25)
     assert offset < 0.0  # right english squirts left, then curves back right past the line
+
+
+@pytest.mark.parametrize("case", [(30, 0.5, 3.0), (15, 0.5, 2.0)])
+def test_a_swerve_curves_the_same_way_as_pooltools_and_no_further(table, case):
+    # Here the ball hops off the slate (pooltool 0.6.0 has no flight): no cloth touches it
+    # in the air, so its swerve starts later and is smaller 1 m on, never larger.
+    offset = offset_down_the_line(table, stroke(*case), 1.0)
+    assert POOLTOOL_OFFSET_AT_1M[case] < offset < 0.0
 
 
 def test_a_level_stroke_with_the_same_english_does_not_curve_back(table):
@@ -156,18 +164,19 @@ def test_a_level_stroke_with_the_same_english_does_not_curve_back(table):
     assert offset_down_the_line(table, Shot(0.0, 2.0, (0.5, 0.0)), 1.0) > 0.0
 
 
-def kinetic_energy(balls: BallSet) -> float:
-    return balls.kinetic_energy(BALL_MASS, BALL_RADIUS)
+def mechanical_energy(balls: BallSet) -> float:
+    """With the height's potential energy: a flying ball trades one for the other."""
+    return balls.mechanical_energy(BALL_MASS, BALL_RADIUS, DEFAULT_PARAMS.g)
 
 
 @pytest.mark.parametrize("case", [(60, 0.5, 2.0), (80, -0.5, 4.0), (30, 0.3, 6.0)])
 def test_energy_never_rises_after_a_raised_strike(table, case):
     balls = BallSet.place({0: START, 1: (1.5, 0.6), 2: (1.2, 0.3)})
     strike(balls, stroke(*case))
-    energy = kinetic_energy(balls)
+    energy = mechanical_energy(balls)
     for k in range(6000):
         step(table, balls, TICK, k * TICK)
-        now = kinetic_energy(balls)
+        now = mechanical_energy(balls)
         assert now <= energy * (1 + 1e-12) + 1e-15
         energy = now
         if balls.at_rest():
@@ -177,7 +186,8 @@ def test_energy_never_rises_after_a_raised_strike(table, case):
 
 def digest(balls: BallSet) -> str:
     h = hashlib.sha256()
-    for array in (balls.positions, balls.velocities, balls.spins, balls.states, balls.phases):
+    arrays = (balls.positions, balls.velocities, balls.spins, balls.states, balls.heights)
+    for array in (*arrays, balls.phases):
         h.update(np.ascontiguousarray(array).tobytes())
     return h.hexdigest()
 

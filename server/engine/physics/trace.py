@@ -35,8 +35,8 @@ EVENT_ROWS = 4 * MAX_EVENTS_PER_TICK  # rows one tick may write (see `trace_tick
 
 @njit(cache=True, nogil=True)
 def traced_run_kernel(
-    pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width, p, dt,
-    max_ticks, tol, tol_phase,
+    pos, vel, w, st, phase, pocket_of, air, cush, jaws, pockets, centers, length, width, p,
+    dt, max_ticks, tol, tol_phase,
 ):  # fmt: skip
     """The shot run to rest once, traced and thinned, in one compiled call. The table is
     advanced in place, as `run_to_rest_kernel` advances it.
@@ -46,8 +46,8 @@ def traced_run_kernel(
     value for value: (frame positions, frame cels, frame on-table, event rows, stalled
     ticks, ticks))."""
     t, positions, phases, on, forced, ticks, engine = trace_ticks(
-        pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width, p, dt,
-        max_ticks,
+        pos, vel, w, st, phase, pocket_of, air, cush, jaws, pockets, centers, length, width, p,
+        dt, max_ticks,
     )  # fmt: skip
     knots, offsets = thin(t, positions, phases, on, forced, tol, tol_phase, MAX_SPAN)
     return t, positions, phases, on, knots, offsets, ticks, engine
@@ -55,8 +55,8 @@ def traced_run_kernel(
 
 @njit(cache=True, nogil=True)
 def trace_ticks(
-    pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width, p, dt,
-    max_ticks,
+    pos, vel, w, st, phase, pocket_of, air, cush, jaws, pockets, centers, length, width, p,
+    dt, max_ticks,
 ):  # fmt: skip
     """Samples of the whole shot: t = 0, every event time (replayed), every tick's end; and
     what the engine's `run_to_rest_kernel` returns for the same shot, value for value (the
@@ -86,9 +86,9 @@ def trace_ticks(
     # Snapshots of the table at each tick's start and for the replays, reused (a shot has
     # hundreds of ticks).
     pos0, vel0, w0, st0 = np.empty_like(pos), np.empty_like(vel), np.empty_like(w), st.copy()
-    phase0, pocket0 = np.empty_like(phase), pocket_of.copy()
+    phase0, pocket0, air0 = np.empty_like(phase), pocket_of.copy(), air.copy()
     pos1, vel1, w1, st1 = np.empty_like(pos), np.empty_like(vel), np.empty_like(w), st.copy()
-    phase1, pocket1 = np.empty_like(phase), pocket_of.copy()
+    phase1, pocket1, air1 = np.empty_like(phase), pocket_of.copy(), air.copy()
     k = 0
     s_t[0] = 0.0
     s_pos[0] = pos
@@ -105,9 +105,10 @@ def trace_ticks(
         st0[:] = st
         phase0[:] = phase
         pocket0[:] = pocket_of
+        air0[:] = air
         n_ev, stalled = run_tick(
-            pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width, p,
-            dt, t0, events, 0,
+            pos, vel, w, st, phase, pocket_of, air, cush, jaws, pockets, centers, length,
+            width, p, dt, t0, events, 0,
         )  # fmt: skip
         if stalled:
             stalls += 1
@@ -151,9 +152,10 @@ def trace_ticks(
                     st1[:] = st0
                     phase1[:] = phase0
                     pocket1[:] = pocket0
+                    air1[:] = air0
                     run_tick(
-                        pos1, vel1, w1, st1, phase1, pocket1, cush, jaws, pockets, centers,
-                        length, width, p, span, t0, scratch, 0,
+                        pos1, vel1, w1, st1, phase1, pocket1, air1, cush, jaws, pockets,
+                        centers, length, width, p, span, t0, scratch, 0,
                     )  # fmt: skip
                     s_pos[k] = pos1
                     s_phase[k] = phase1
