@@ -7,6 +7,7 @@ ball, the knots of its exact motion) in the same compiled call that simulates it
 
 from .balls import CUE, BallSet, MotionState
 from .params import DEFAULT_PARAMS, PhysicsParams
+from .physics.constants import OFF_TABLE
 from .rack import rack, rack_slots
 from .results import Event, EventKind, FlightKind, Frame, FrameSequence, Settled, ShotResult
 from .shot import (
@@ -44,6 +45,7 @@ __all__ = [
     "MAX_ELEVATION",
     "MAX_SPEED",
     "MAX_TIP",
+    "OFF_TABLE",
     "PHYSICS_REVISION",
     "TICK_HZ",
     "BallSet",
