@@ -198,15 +198,17 @@ class ShotInMotion:
             return
         s, geo = self.state, self._geometry
         ids = s.ids.copy()
-        times, positions, phases, on_table, knots, offsets, ticks, self._raw = traced_run_kernel(
+        traced = traced_run_kernel(
             s.positions, s.velocities, s.spins, s.states, s.phases, s.pockets, s.heights,
             geo.cushions, geo.jaws, geo.pockets, geo.centers, geo.length, geo.width,
             self._params, self.tick, int(MAX_SHOT_SECONDS / self.tick), float(trace.position),
             float(trace.phase),
         )  # fmt: skip
+        times, positions, phases, on_table, knots, offsets, heights, ticks, self._raw = traced
         self._trace = Trace(
-            ids, times, positions, phases, on_table, knots, offsets, s.pockets.copy(), ticks
-        )
+            ids, times, positions, phases, on_table, knots, offsets, s.pockets.copy(), ticks,
+            heights,
+        )  # fmt: skip
 
     @property
     def trace(self) -> Trace:

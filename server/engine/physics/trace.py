@@ -42,15 +42,16 @@ def traced_run_kernel(
     advanced in place, as `run_to_rest_kernel` advances it.
 
     Returns (times (S,), positions (S, N, 2), phases (S, N), on-table (S, N), knots,
-    offsets (see `thin`), ticks, and what `run_to_rest_kernel` returns for the same shot,
+    offsets (see `thin`), heights (S, N), ticks, and what `run_to_rest_kernel` returns
+    for the same shot,
     value for value: (frame positions, frame cels, frame on-table, event rows, stalled
     ticks, ticks))."""
-    t, positions, phases, on, forced, ticks, engine = trace_ticks(
+    t, positions, phases, on, forced, heights, ticks, engine = trace_ticks(
         pos, vel, w, st, phase, pocket_of, air, cush, jaws, pockets, centers, length, width, p,
         dt, max_ticks,
     )  # fmt: skip
-    knots, offsets = thin(t, positions, phases, on, forced, tol, tol_phase, MAX_SPAN)
-    return t, positions, phases, on, knots, offsets, ticks, engine
+    knots, offsets = thin(t, positions, phases, heights, on, forced, tol, tol_phase, MAX_SPAN)
+    return t, positions, phases, on, knots, offsets, heights, ticks, engine
 
 
 @njit(cache=True, nogil=True)
@@ -63,7 +64,8 @@ def trace_ticks(
     same `run_tick` calls: the table is advanced to rest in place, as the engine does).
 
     Returns (times (S,), positions (S, N, 2), phases (S, N), on-table (S, N), forced
-    (S, N): the ball takes part in an event at that sample, ticks, and the engine's
+    (S, N): the ball takes part in an event at that sample, heights (S, N), ticks, and
+    the engine's
     (frame positions, frame cels, frame on-table, event rows, stalled ticks, ticks))."""
     n = pos.shape[0]
     frame_cap = 256
@@ -77,6 +79,7 @@ def trace_ticks(
     s_t = np.empty(cap)
     s_pos = np.empty((cap, n, 2))
     s_phase = np.empty((cap, n))
+    s_z = np.zeros((cap, n))
     s_on = np.empty((cap, n), dtype=np.bool_)
     s_forced = np.zeros((cap, n), dtype=np.bool_)
     # A tick stops after MAX_EVENTS_PER_TICK contacts, but the `rest` events between them
@@ -93,6 +96,7 @@ def trace_ticks(
     s_t[0] = 0.0
     s_pos[0] = pos
     s_phase[0] = phase
+    s_z[0] = air[:, 0]
     for i in range(n):
         s_on[0, i] = st[i] != POCKETED
     k = 1
@@ -130,6 +134,7 @@ def trace_ticks(
             s_t = grown(s_t, cap)
             s_pos = grown(s_pos, cap)
             s_phase = grown(s_phase, cap)
+            s_z = grown(s_z, cap)
             s_on = grown(s_on, cap)
             s_forced = grown(s_forced, cap)
             s_forced[k:] = False
@@ -159,6 +164,7 @@ def trace_ticks(
                     )  # fmt: skip
                     s_pos[k] = pos1
                     s_phase[k] = phase1
+                    s_z[k] = air1[:, 0]
                     s_t[k] = time  # (the balls BEFORE earlier: the same within 1e-8 m)
                     for i in range(n):
                         # On the table up to its pocket event (the replay stops short).
@@ -166,6 +172,7 @@ def trace_ticks(
                 else:
                     s_pos[k] = pos0
                     s_phase[k] = phase0
+                    s_z[k] = air0[:, 0]
                     s_t[k] = t0
                     for i in range(n):
                         s_on[k, i] = st0[i] != POCKETED
@@ -184,6 +191,7 @@ def trace_ticks(
         s_t[k] = t0 + dt
         s_pos[k] = pos
         s_phase[k] = phase
+        s_z[k] = air[:, 0]
         s_forced[k] = False
         for i in range(n):
             s_on[k, i] = st[i] != POCKETED
@@ -203,21 +211,24 @@ def trace_ticks(
         s_phase[:k].copy(),
         s_on[:k].copy(),
         s_forced[:k].copy(),
+        s_z[:k].copy(),
         ticks,
         engine,
     )
 
 
 @njit(cache=True, inline="always")
-def _fits(t, pos, phase, b, a, j, tol, tol_phase):
+def _fits(t, pos, phase, z, b, a, j, tol, tol_phase):
     """Does the straight line from sample a to sample j pass within tol of every sample
-    between them (ball b)?"""
+    between them (ball b), its height too?"""
     span = t[j] - t[a]
     for i in range(a + 1, j):
         f = (t[i] - t[a]) / span if span > 0.0 else 0.0
         x = pos[a, b, 0] + (pos[j, b, 0] - pos[a, b, 0]) * f
         y = pos[a, b, 1] + (pos[j, b, 1] - pos[a, b, 1]) * f
         if (x - pos[i, b, 0]) ** 2 + (y - pos[i, b, 1]) ** 2 > tol * tol:
+            return False
+        if abs(z[a, b] + (z[j, b] - z[a, b]) * f - z[i, b]) > tol:
             return False
         ph = phase[a, b] + (phase[j, b] - phase[a, b]) * f
         if abs(ph - phase[i, b]) > tol_phase:
@@ -226,7 +237,7 @@ def _fits(t, pos, phase, b, a, j, tol, tol_phase):
 
 
 @njit(cache=True, nogil=True)
-def thin(t, pos, phase, on, forced, tol, tol_phase, max_span):
+def thin(t, pos, phase, z, on, forced, tol, tol_phase, max_span):
     """Knot sample indices per ball: (knots, offsets) with ball b's in
     knots[offsets[b]:offsets[b + 1]]. A ball's track ends at its last sample on the table
     (its pocket) or where it last moved (it rests there after)."""
@@ -243,15 +254,15 @@ def thin(t, pos, phase, on, forced, tol, tol_phase, max_span):
             offsets[b + 1] = count
             continue
         if end == s - 1:  # never pocketed: it rests where it last moved
-            while end > 0 and _same(pos, phase, b, end - 1, end):
+            while end > 0 and _same(pos, phase, z, b, end - 1, end):
                 end -= 1
         knots[count] = 0
         count += 1
         a = 0
         while a < end:
             j = a + 1
-            if _same(pos, phase, b, a, j):
-                while j < end and _same(pos, phase, b, a, j + 1):
+            if _same(pos, phase, z, b, a, j):
+                while j < end and _same(pos, phase, z, b, a, j + 1):
                     j += 1
                 knots[count] = j
                 count += 1
@@ -266,14 +277,14 @@ def thin(t, pos, phase, on, forced, tol, tol_phase, max_span):
             fails = limit + 1
             while j < limit:
                 probe = min(j + step, limit)
-                if not _fits(t, pos, phase, b, a, probe, tol, tol_phase):
+                if not _fits(t, pos, phase, z, b, a, probe, tol, tol_phase):
                     fails = probe
                     break
                 j = probe
                 step *= 2
             while fails - j > 1 and j < limit:
                 mid = (j + fails) // 2
-                if _fits(t, pos, phase, b, a, mid, tol, tol_phase):
+                if _fits(t, pos, phase, z, b, a, mid, tol, tol_phase):
                     j = mid
                 else:
                     fails = mid
@@ -285,7 +296,10 @@ def thin(t, pos, phase, on, forced, tol, tol_phase, max_span):
 
 
 @njit(cache=True, inline="always")
-def _same(pos, phase, b, i, j):
+def _same(pos, phase, z, b, i, j):
     return (
-        pos[i, b, 0] == pos[j, b, 0] and pos[i, b, 1] == pos[j, b, 1] and phase[i, b] == phase[j, b]
+        pos[i, b, 0] == pos[j, b, 0]
+        and pos[i, b, 1] == pos[j, b, 1]
+        and phase[i, b] == phase[j, b]
+        and z[i, b] == z[j, b]
     )
