@@ -36,7 +36,8 @@ TRACE = Tolerance(TOLERANCE, PHASE_TOLERANCE)
 NO_BALL = 255
 HEADER = struct.Struct("<BBIIIBH")  # kind, version, seq, shot, duration_us, balls, events
 SEQ_OFFSET = 2
-SOUND_CODES = {"strike": 0, "ball": 1, "cushion": 2, "jaw": 3, "pocket": 4}
+# `land` (a flying ball meets the slate) only happens in a version 2 message.
+SOUND_CODES = {"strike": 0, "ball": 1, "cushion": 2, "jaw": 3, "pocket": 4, "land": 5}
 
 
 @njit(cache=True, inline="always")

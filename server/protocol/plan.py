@@ -21,7 +21,7 @@ from server.engine import BALL_RADIUS, TICK_HZ, Event, ShotResult
 
 from .motion import Tracks, motion_bytes, pack_tracks
 
-SOUND_KINDS = frozenset(("strike", "ball", "cushion", "jaw", "pocket"))
+SOUND_KINDS = frozenset(("strike", "ball", "cushion", "jaw", "pocket", "land"))
 ALWAYS_SENT = frozenset(("strike", "pocket"))
 MAX_SOUNDS_PER_TICK = 12  # a rack's contacts can come by the thousand in one tick
 SOUND_GAP = 0.05  # s: the same contact again within this is one sound

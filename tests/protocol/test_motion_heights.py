@@ -48,6 +48,8 @@ def test_a_jump_is_version_2_and_its_heights_follow_the_engine():
     blocker = next(t for t in motion["tracks"] if t["id"] == 1)
     assert max(cue["z"]) > 2 * BALL_RADIUS  # over the blocker
     assert not any(blocker["z"]) and not cue["off_table"]
+    lands = [s for s in motion["sounds"] if s["kind"] == "land"]
+    assert lands and lands[0]["ids"] == [0]  # the landing's thud
     # Every sample of the engine's trace up to the cue ball's last knot is within the
     # tolerance (plus 0.05 mm of rounding) of the drawn height.
     engine = ShotInMotion(TABLE, balls, jump(40, 5.0))

@@ -21,7 +21,7 @@ const PER_SECOND = 1e6; // times in microseconds
 const HALF_TICK = 0.5 / PER_SECOND; // a time's rounding
 const PHASE_STEPS = 4096; // per turn
 const NO_BALL = 255;
-export const SOUND_KINDS = ['strike', 'ball', 'cushion', 'jaw', 'pocket'];
+export const SOUND_KINDS = ['strike', 'ball', 'cushion', 'jaw', 'pocket', 'land'];
 
 /**
  * @typedef {object} Track one ball's knots (typed arrays of the same length, time order)
