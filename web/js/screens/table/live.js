@@ -135,6 +135,7 @@ export class LiveTable {
     this.aim.reset();
     this.aim.angle = plan.angle;
     this.aim.tip = clampTip(plan.tip[0], plan.tip[1], this.limits.max_tip);
+    this.elevation.set(0); // the computer's strokes are level
     this.aim.power = powerFromSpeed(plan.speed, this.limits.max_speed);
     this.aim.dirty = true;
     this.triedPower = this.aim.power;
