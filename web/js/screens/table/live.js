@@ -13,7 +13,7 @@ import { RoomSocket, memory } from '../../net.js';
 import {
   initialState, setConnection, isMyTurn, clockRemaining, playerName,
 } from '../../state.js';
-import { clampTip } from '../../geometry.js';
+import { clampTip, tipAlongCue } from '../../geometry.js';
 import { attachPointer, AimController } from '../../input.js';
 import {
   $, $input, applyInputLimits, renderHud, renderChat, renderDecision, renderAway, setText,
@@ -134,8 +134,11 @@ export class LiveTable {
     }
     this.aim.reset();
     this.aim.angle = plan.angle;
-    this.aim.tip = clampTip(plan.tip[0], plan.tip[1], this.limits.max_tip);
-    this.elevation.set(0); // the computer's strokes are level
+    // A jump's tip comes as the server names it: the spin widget shows it along the cue.
+    const elevation = plan.elevation ?? 0;
+    const tip = tipAlongCue(plan.tip[0], plan.tip[1], elevation);
+    this.aim.tip = clampTip(tip[0], tip[1], this.limits.max_tip);
+    this.elevation.set(Math.round((elevation * 180) / Math.PI));
     this.aim.power = powerFromSpeed(plan.speed, this.limits.max_speed);
     this.aim.dirty = true;
     this.triedPower = this.aim.power;
