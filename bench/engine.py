@@ -6,7 +6,8 @@ Prints the median wall time of `simulate` (cue ball on the head spot, 10 m/s str
 the apex, centre hit) and of `settle` (the same ticks without the frames, as the computer's
 search runs them) with ticks and events, over `--runs` runs after one warm-up call
 (whose time, the numba compile or cache load, is printed too); then both doors' mean time
-a shot over 1,000 strokes like those the search tries. When pooltool is importable,
+a shot over 1,000 strokes like those the search tries, then the same strokes with the cue
+raised (10-60 degrees: swerves, masses and jumps). When pooltool is importable,
 or an interpreter that has it is named by `--pooltool-python` (or $POOLTOOL_PYTHON),
 pooltool simulates the same break in the same run and the ratio is printed.
 """
@@ -35,6 +36,7 @@ from server.engine import (
     rack,
     settle,
     simulate,
+    tip_seen_level,
 )
 
 SEARCH_SHOTS = 1000
@@ -108,9 +110,10 @@ def ours(runs: int, seed: int) -> dict:
     }
 
 
-def search_shots(count: int, seed: int) -> list[tuple[Table, BallSet, Shot]]:
+def search_shots(count: int, seed: int, raised: bool = False) -> list[tuple[Table, BallSet, Shot]]:
     """Strokes like those the computer's search tries: from tables left by a break, any
-    direction, 0.5-5 m/s, tip within 0.3 R."""
+    direction, 0.5-5 m/s, tip within 0.3 R; `raised`: the same with the cue raised 10-60
+    degrees (the tip then within 0.3 R seen along the cue)."""
     rng = np.random.default_rng(seed)
     table = Table.pool("9ft")
     shots: list[tuple[Table, BallSet, Shot]] = []
@@ -123,7 +126,12 @@ def search_shots(count: int, seed: int) -> list[tuple[Table, BallSet, Shot]]:
         for _ in range(min(50, count - len(shots))):
             tip = (float(rng.uniform(-0.3, 0.3)), float(rng.uniform(-0.3, 0.3)))
             angle, speed = float(rng.uniform(-math.pi, math.pi)), float(rng.uniform(0.5, 5.0))
-            shots.append((table, broken, Shot(angle, speed, tip)))
+            if raised:
+                elevation = math.radians(float(rng.uniform(10.0, 60.0)))
+                shot = Shot(angle, speed, tip_seen_level(tip, elevation), elevation)
+            else:
+                shot = Shot(angle, speed, tip)
+            shots.append((table, broken, shot))
     return shots
 
 
@@ -185,6 +193,12 @@ def main(argv: list[str] | None = None) -> None:
         f"  {SEARCH_SHOTS} strokes like the search's (tables left by a break, 0.5-5 m/s): "
         f"simulate {per_shot_ms(simulate, shots, 5):.3f} ms a shot, "
         f"settle {per_shot_ms(settle, shots, 5):.3f} ms (median of 5 passes)"
+    )
+    raised = search_shots(SEARCH_SHOTS, args.seed, raised=True)
+    print(
+        f"  the same strokes with the cue raised 10-60 degrees: "
+        f"simulate {per_shot_ms(simulate, raised, 5):.3f} ms a shot, "
+        f"settle {per_shot_ms(settle, raised, 5):.3f} ms (median of 5 passes)"
     )
     pt = pooltool(max(5, args.runs // 2), args.pooltool_python)
     if pt is None:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
+from dataclasses import replace
 
 import numpy as np
 
@@ -88,6 +89,16 @@ def perturb(
     that every runout figure in docs/ai.md was measured on)."""
     side, height = shot.tip
     gain = strike_gain(side, height) if cue_speed else 1.0
+    if shot.elevation > 0.0:
+        # A jump: the tip stays where it meets the ball (an error there could be a miscue
+        # the arm would not play); the line and the speed stray as on any stroke.
+        jumped = clamp_shot(
+            shot.angle + float(noise[0]) * level.aim,
+            shot.speed + float(noise[1]) * level.speed * gain,
+            0.0,
+            0.0,
+        )
+        return replace(shot, angle=jumped.angle, speed=jumped.speed)
     played = clamp_shot(
         shot.angle + float(noise[0]) * level.aim,
         shot.speed + float(noise[1]) * level.speed * gain,

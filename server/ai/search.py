@@ -16,7 +16,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from server.engine import CUE, MAX_SPEED, BallSet, Settled, Shot, Table, settle
+from server.engine import CUE, MAX_SPEED, BallSet, Settled, Shot, Table, settle, tip_seen_level
 from server.engine.results import Event
 from server.rules.position import Position
 from server.rules.ruling import Ruling
@@ -76,6 +76,11 @@ SAFETY_FRACTIONS = (-0.9, -0.6, -0.3, 0.0, 0.3, 0.6, 0.9)
 SAFETY_SPEEDS = (0.7, 1.1, 1.6, 2.6)
 SAFETY_HEIGHTS = (0.0, -0.35, 0.35)
 KICK_SPEEDS = (1.5, 2.6, 4.0)
+# Jumps over a ball in the way (the pro level): the cue raised so (degrees) at these speeds,
+# its axis through the ball's centre. The engine clears a ball 15 cm ahead at 45 degrees
+# and 4-5 m/s, one 20-25 cm ahead from 35 degrees (docs/engine.md).
+JUMPS = ((40.0, 4.0), (40.0, 5.0), (45.0, 4.0), (45.0, 5.0))
+JUMP_REACH = (0.1, 0.35)  # m from the cue ball to the blocker: nearer or further, no jump
 KICK_OFFSETS = (-2.0, -0.8, 0.0, 0.8, 2.0)  # degrees off the mirror-image line
 SWEEP_SPEEDS = (1.6, 3.2)
 SWEEP_ANGLES = 40
@@ -568,6 +573,34 @@ class Search:
                         out.append(Candidate(shot, call, "kick", t))
         return out
 
+    def escape_candidates(self, balls: BallSet) -> list[Candidate]:
+        """The kicks and, at a level that jumps, the jumps: judged side by side."""
+        return self.kick_candidates(balls) + self.jump_candidates(balls)
+
+    def jump_candidates(self, balls: BallSet) -> list[Candidate]:
+        """Jumps at the nearest legal balls whose straight path from the cue ball is
+        blocked by a ball within `JUMP_REACH` of it: straight at the ball's centre, the cue
+        raised and struck as `JUMPS` says; the simulations judge them like kicks."""
+        if not self.level.jumps:
+            return []
+        r = self.table.ball_radius
+        cx, cy = balls.position_of(CUE)
+        call = self.default_call(balls)
+        on = set(balls.on_table_ids())
+        targets = [t for t in self.targets(self.pos) if t in on]
+        targets.sort(key=lambda t: math.dist(balls.position_of(t), (cx, cy)))
+        out = []
+        for t in targets[:3]:
+            tx, ty = balls.position_of(t)
+            if not _blocked_near(balls, (cx, cy), (tx, ty), t, r):
+                continue
+            for degrees, speed in JUMPS:
+                elevation = math.radians(degrees)
+                tip = tip_seen_level((0.0, 0.0), elevation)
+                shot = Shot(math.atan2(ty - cy, tx - cx), speed, tip, elevation)
+                out.append(Candidate(shot, call, "kick", t))
+        return out
+
     def sweep_candidates(
         self, balls: BallSet, speeds: tuple[float, ...] = SWEEP_SPEEDS
     ) -> list[Candidate]:
@@ -611,7 +644,7 @@ class Search:
         keep = max(2, level.refine // 2) if level.safeties else 1
         if best is None or (level.safeties and best.value < SAFETY_BELOW):
             safe = self.refine(balls, self.safety_candidates(balls), keep)
-            for more in (self.kick_candidates, self.sweep_candidates):
+            for more in (self.escape_candidates, self.sweep_candidates):
                 if safe and safe[0].value > FOUL + 0.2:
                     break
                 safe = sorted(safe + self.refine(balls, more(balls), keep), key=lambda c: -c.value)
@@ -658,3 +691,21 @@ class Search:
         nx, ny = balls.position_of(near)
         shot = clamp_shot(math.atan2(ny - cy, nx - cx), 2.0, 0.0, 0.0)
         return Candidate(shot, self.default_call(balls), "safety", near)
+
+
+def _blocked_near(
+    balls: BallSet, cue: tuple[float, float], target: tuple[float, float], ball: int, r: float
+) -> bool:
+    """Is the straight path from the cue ball to `ball` blocked, by a ball whose centre is
+    within `JUMP_REACH` of the cue ball's (one a jump can clear)?"""
+    for other in balls.on_table_ids():
+        if other in (CUE, ball):
+            continue
+        ox, oy = balls.position_of(other)
+        dx, dy = target[0] - cue[0], target[1] - cue[1]
+        length = math.hypot(dx, dy)
+        along = ((ox - cue[0]) * dx + (oy - cue[1]) * dy) / length
+        across = abs((ox - cue[0]) * dy - (oy - cue[1]) * dx) / length
+        if JUMP_REACH[0] <= along <= min(JUMP_REACH[1], length - 2 * r) and across < 2 * r:
+            return True
+    return False

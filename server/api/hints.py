@@ -48,6 +48,7 @@ class Hint(BaseModel):
     chance: float | None  # the share of its noisy trials that pocketed a ball legally
     via: str | None = None  # a pot's route: "direct", "bank" (off a cushion), "combo", "carom",
     # "billiard" (the cue ball glances off the first ball into the one it pots)
+    elevation: float = 0.0  # the cue's elevation, radians (a jump); left out when level
 
 
 def hint_ask(settings: Settings, address: str | None, player: str | None) -> HintAsk:
@@ -79,6 +80,7 @@ async def hint_for(
         raise HTTPException(
             409, {"code": "not_your_turn", "message": "There is a decision to make, not a shot."}
         )
+    raised = {"elevation": turn.shot.elevation} if turn.shot.elevation > 0.0 else {}
     return {
         "level": HINT_LEVEL,
         "kind": turn.kind or "pot",
@@ -91,4 +93,5 @@ async def hint_for(
         "pocket": turn.pocket,
         "chance": turn.chance,
         "via": turn.via,
+        **raised,
     }

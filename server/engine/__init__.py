@@ -7,9 +7,19 @@ ball, the knots of its exact motion) in the same compiled call that simulates it
 
 from .balls import CUE, BallSet, MotionState
 from .params import DEFAULT_PARAMS, PhysicsParams
+from .physics.constants import OFF_TABLE
 from .rack import rack, rack_slots
-from .results import Event, EventKind, Frame, FrameSequence, Settled, ShotResult
-from .shot import MAX_SPEED, MAX_TIP, Shot
+from .results import Event, EventKind, FlightKind, Frame, FrameSequence, Settled, ShotResult
+from .shot import (
+    MAX_ELEVATION,
+    MAX_SPEED,
+    MAX_TIP,
+    Miscue,
+    Shot,
+    check_stroke,
+    cue_offset,
+    tip_seen_level,
+)
 from .simulate import (
     DEFAULT_TICK,
     TICK_HZ,
@@ -32,16 +42,20 @@ __all__ = [
     "DEFAULT_PARAMS",
     "DEFAULT_TICK",
     "ENGINE_VERSION",
+    "MAX_ELEVATION",
     "MAX_SPEED",
     "MAX_TIP",
+    "OFF_TABLE",
     "PHYSICS_REVISION",
     "TICK_HZ",
     "BallSet",
     "Cushion",
     "Event",
     "EventKind",
+    "FlightKind",
     "Frame",
     "FrameSequence",
+    "Miscue",
     "MotionState",
     "PhysicsParams",
     "Pocket",
@@ -52,6 +66,8 @@ __all__ = [
     "Table",
     "Tolerance",
     "Trace",
+    "check_stroke",
+    "cue_offset",
     "engine_version",
     "rack",
     "rack_slots",
@@ -61,4 +77,5 @@ __all__ = [
     "simulate_traced",
     "step",
     "strike",
+    "tip_seen_level",
 ]

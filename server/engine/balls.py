@@ -12,13 +12,14 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 from enum import IntEnum
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import numpy as np
+from pydantic import Field
 
 from ..codec import from_data, to_dict
 from .params import DEFAULT_PARAMS, PhysicsParams
-from .physics.constants import POCKETED, ROLLING, SLIDING
+from .physics.constants import AIRBORNE, OFF_TABLE, POCKETED, ROLLING, SLIDING
 from .physics.tick import cels_of
 
 if TYPE_CHECKING:  # to mypy the codec's array types are values; pydantic reads the real ones
@@ -39,7 +40,13 @@ _SHAPES = (
     ("states", ()),
     ("phases", ()),
     ("pockets", ()),
+    ("heights", (2,)),
 )
+
+
+def _flat(heights: np.ndarray) -> bool:
+    """Every ball on the bed: the stored form leaves `heights` out, as before it existed."""
+    return not heights.any()
 
 
 class MotionState(IntEnum):
@@ -52,7 +59,8 @@ class MotionState(IntEnum):
     SPINNING = 1  # in place, about the vertical axis only
     SLIDING = 2  # the contact point slips on the cloth
     ROLLING = 3  # no slip
-    POCKETED = 4
+    POCKETED = 4  # out of play: in a pocket, or off the table (its pocket OFF_TABLE)
+    AIRBORNE = 5  # in flight after a jump or a hop (`heights`)
 
 
 @dataclass
@@ -61,7 +69,9 @@ class BallSet:
 
     positions (N, 2) m; velocities (N, 2) m/s; spins (N, 3) rad/s (angular velocity, z up);
     states (N,) MotionState; phases (N,) rad rolled (drives the sprite cel);
-    pockets (N,) pocket index for a pocketed ball, else -1.
+    pockets (N,) pocket index for a pocketed ball, OFF_TABLE (-2) for a ball that flew off
+    the table, else -1; heights (N, 2): the centre's height above its resting height (m)
+    and vertical speed (m/s), both 0 on the bed (a stored set without them is on the bed).
     """
 
     ids: Int64Array
@@ -71,11 +81,14 @@ class BallSet:
     states: Int64Array
     phases: Float64Array
     pockets: Int64Array
+    heights: Annotated[Float64Array, Field(exclude_if=_flat)] = None  # type: ignore[assignment]
 
     def __post_init__(self) -> None:
         """Refuse arrays that disagree on the ball count: loaded data is checked here, and
         an empty set's arrays take their 2-D shapes back from flat empty lists."""
         n = len(self.ids)
+        if self.heights is None:
+            self.heights = np.zeros((n, 2))
         for name, tail in _SHAPES:
             shape = (n, *tail)
             array = getattr(self, name)
@@ -104,6 +117,7 @@ class BallSet:
             states=np.full(n, MotionState.STATIONARY, dtype=np.int64),
             phases=np.zeros(n),
             pockets=np.full(n, -1, dtype=np.int64),
+            heights=np.zeros((n, 2)),
         )
 
     @classmethod
@@ -116,6 +130,7 @@ class BallSet:
         states: np.ndarray,
         phases: np.ndarray,
         pockets: np.ndarray,
+        heights: np.ndarray,
     ) -> BallSet:
         """A set holding these arrays as they are, unchecked: for arrays the engine made
         from a checked set (the shapes are that set's), where checking them again only
@@ -128,6 +143,7 @@ class BallSet:
         out.states = states
         out.phases = phases
         out.pockets = pockets
+        out.heights = heights
         return out
 
     def copy(self) -> BallSet:
@@ -140,6 +156,7 @@ class BallSet:
             self.states.copy(),
             self.phases.copy(),
             self.pockets.copy(),
+            self.heights.copy(),
         )
 
     def __len__(self) -> int:
@@ -161,9 +178,20 @@ class BallSet:
 
     @property
     def moving(self) -> np.ndarray:
-        """(N,) bool: the ball translates (sliding or rolling)."""
-        moving: np.ndarray = (self.states == SLIDING) | (self.states == ROLLING)
+        """(N,) bool: the ball translates (sliding, rolling or in flight)."""
+        states = self.states
+        moving: np.ndarray = (states == SLIDING) | (states == ROLLING) | (states == AIRBORNE)
         return moving
+
+    @property
+    def off_table(self) -> np.ndarray:
+        """(N,) bool: the ball flew off the table (out of play, in no pocket)."""
+        off: np.ndarray = (self.states == POCKETED) & (self.pockets == OFF_TABLE)
+        return off
+
+    def off_table_ids(self) -> list[int]:
+        ids: list[int] = self.ids[self.off_table].tolist()
+        return ids
 
     def at_rest(self) -> bool:
         """No ball translates any more."""
@@ -198,16 +226,24 @@ class BallSet:
         out.spins[row] = 0.0
         out.states[row] = MotionState.STATIONARY
         out.pockets[row] = -1
+        out.heights[row] = 0.0
         return out
 
     def kinetic_energy(self, mass: float, radius: float) -> float:
-        """Translational plus rotational kinetic energy of the balls on the table (J)."""
+        """Translational (the vertical speed of a flying ball too) plus rotational kinetic
+        energy of the balls on the table (J)."""
         on = self.on_table
         inertia = 0.4 * mass * radius * radius
         return float(
-            0.5 * mass * np.sum(self.velocities[on] ** 2)
+            0.5 * mass * (np.sum(self.velocities[on] ** 2) + np.sum(self.heights[on, 1] ** 2))
             + 0.5 * inertia * np.sum(self.spins[on] ** 2)
         )
+
+    def mechanical_energy(self, mass: float, radius: float, g: float) -> float:
+        """`kinetic_energy` plus the height's potential energy m g z (J): what never rises
+        while a ball flies."""
+        on = self.on_table
+        return self.kinetic_energy(mass, radius) + float(mass * g * np.sum(self.heights[on, 0]))
 
     def to_dict(self) -> dict[str, Any]:
         """The stored form: `server.codec.to_data(self)`."""

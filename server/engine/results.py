@@ -22,8 +22,16 @@ class EventKind(StrEnum):
     REST = "rest"  # a ball stops translating
 
 
-# Kind codes used inside the compiled kernels, in the order of EventKind.
-EVENT_CODES: tuple[EventKind, ...] = tuple(EventKind)
+class FlightKind(StrEnum):
+    """What only a flying ball does (a raised cue's jump or hop): kinds apart from
+    `EventKind`, which lists what every shot can do."""
+
+    LAND = "land"  # a flying ball meets the slate (and hops again, or stays down)
+    OFF_TABLE = "off_table"  # a flying ball clears a cushion: out of play
+
+
+# Kind codes used inside the compiled kernels: EventKind's in order, then FlightKind's.
+EVENT_CODES: tuple[StrEnum, ...] = (*EventKind, *FlightKind)
 _CODE_OF = {kind.value: code for code, kind in enumerate(EVENT_CODES)}
 _KIND_NAMES = tuple(kind.value for kind in EVENT_CODES)
 
@@ -33,12 +41,14 @@ class Event:
     """One thing that happened during a shot.
 
     time: seconds since the strike (or since the start of the tick for `step`).
-    kind: one of "strike", "ball", "cushion", "jaw", "pocket", "rest".
+    kind: one of "strike", "ball", "cushion", "jaw", "pocket", "rest", "land", "off_table".
     ids: the ball ids involved (two for "ball", one otherwise).
     speed: impact speed in m/s (relative normal speed for "ball", normal speed into the
-        cushion or jaw, the ball's speed for "strike" and "pocket", 0 for "rest").
+        cushion or jaw, the ball's speed for "strike", "pocket" and "off_table", the speed
+        down into the slate for "land", 0 for "rest").
     target: the cushion, jaw or pocket index (into `Table.cushions`, `Table.jaws`,
-        `Table.pockets`) for those kinds, else -1.
+        `Table.pockets`) for those kinds (for "off_table" the cushion, or the jaw, it
+        flew over), else -1.
     """
 
     time: float

@@ -89,7 +89,10 @@ def strike(
     """Give the cue ball the shot's velocity and spin (in place); returns the strike event."""
     row = _cue_row(balls)
     (vx, vy), (wx, wy, wz) = shot.cue_ball_motion(params.radius, params.cue_mass_ratio)
-    strike_ball(balls.velocities, balls.spins, balls.states, row, vx, vy, wx, wy, wz, params.radius)
+    strike_ball(
+        balls.velocities, balls.spins, balls.states, balls.heights, row, vx, vy, wx, wy, wz,
+        shot.downward_speed(), _params_array(params),
+    )  # fmt: skip
     return Event(time, _STRIKE, (CUE,), float(shot.speed))
 
 
@@ -113,6 +116,7 @@ def step(
         balls.states,
         balls.phases,
         balls.pockets,
+        balls.heights,
         geo.cushions,
         geo.jaws,
         geo.pockets,
@@ -145,6 +149,7 @@ def _run_kernel(
         s.states,
         s.phases,
         s.pockets,
+        s.heights,
         geo.cushions,
         geo.jaws,
         geo.pockets,
@@ -193,14 +198,17 @@ class ShotInMotion:
             return
         s, geo = self.state, self._geometry
         ids = s.ids.copy()
-        times, positions, phases, on_table, knots, offsets, ticks, self._raw = traced_run_kernel(
-            s.positions, s.velocities, s.spins, s.states, s.phases, s.pockets, geo.cushions,
-            geo.jaws, geo.pockets, geo.centers, geo.length, geo.width, self._params, self.tick,
-            int(MAX_SHOT_SECONDS / self.tick), float(trace.position), float(trace.phase),
+        traced = traced_run_kernel(
+            s.positions, s.velocities, s.spins, s.states, s.phases, s.pockets, s.heights,
+            geo.cushions, geo.jaws, geo.pockets, geo.centers, geo.length, geo.width,
+            self._params, self.tick, int(MAX_SHOT_SECONDS / self.tick), float(trace.position),
+            float(trace.phase),
         )  # fmt: skip
+        times, positions, phases, on_table, knots, offsets, heights, ticks, self._raw = traced
         self._trace = Trace(
-            ids, times, positions, phases, on_table, knots, offsets, s.pockets.copy(), ticks
-        )
+            ids, times, positions, phases, on_table, knots, offsets, s.pockets.copy(), ticks,
+            heights,
+        )  # fmt: skip
 
     @property
     def trace(self) -> Trace:
@@ -267,9 +275,9 @@ def settle(
     geo, dt = _geometry(table), float(tick)
     *arrays, rows, stalls, ticks = settle_kernel(
         balls.positions, balls.velocities, balls.spins, balls.states, balls.phases,
-        balls.pockets, row, vx, vy, wx, wy, wz, geo.cushions, geo.jaws, geo.pockets,
-        geo.centers, geo.length, geo.width, _params_array(params), dt,
-        int(MAX_SHOT_SECONDS / dt), _EVENT_CAPACITY,
+        balls.pockets, balls.heights, row, vx, vy, wx, wy, wz, shot.downward_speed(),
+        geo.cushions, geo.jaws, geo.pockets, geo.centers, geo.length, geo.width,
+        _params_array(params), dt, int(MAX_SHOT_SECONDS / dt), _EVENT_CAPACITY,
     )  # fmt: skip
     final = BallSet.of_arrays(balls.ids.copy(), *arrays)
     return Settled(rows, final, ticks * dt, int(stalls), float(shot.speed))

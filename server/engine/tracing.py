@@ -39,8 +39,16 @@ class Trace:
     on_table: np.ndarray  # (S, N) bool
     knots: np.ndarray  # (K,) sample indices, ball by ball
     offsets: np.ndarray  # (N + 1,)
-    pockets: np.ndarray  # (N,) the pocket each ball dropped in, or -1
+    pockets: np.ndarray  # (N,) the pocket each ball dropped in, -1, or OFF_TABLE (-2)
     ticks: int  # as many as the shot's frames
+    # (S, N) m: a flying ball's height above its resting height, 0 on the bed (the knots'
+    # straight lines pass within the position tolerance of it too).
+    heights: np.ndarray | None = None
+
+    @property
+    def flies(self) -> bool:
+        """Some ball leaves the bed in this shot."""
+        return self.heights is not None and bool(self.heights.any())
 
     def knots_of(self, row: int) -> np.ndarray:
         """The sample indices of ball row `row`'s knots."""

@@ -8,17 +8,19 @@ room is already well formed.
 from __future__ import annotations
 
 import json
-import math
 from typing import Annotated, Literal, get_args
 
 from pydantic import BaseModel, ConfigDict, Field, TypeAdapter, ValidationError, model_validator
 
-from server.engine import MAX_SPEED, MAX_TIP
+from server.engine import MAX_ELEVATION, MAX_SPEED, Miscue, check_stroke
 
 from .limits import MAX_ANGLE, MAX_CHAT
 
-TipComponent = Annotated[float, Field(ge=-MAX_TIP, le=MAX_TIP)]
+# A point on the ball's face; which points the cue can strike depends on the elevation
+# (`check_stroke`: |tip| <= max_tip for a level cue, higher on the ball for a raised one).
+TipComponent = Annotated[float, Field(ge=-1.0, le=1.0)]
 Tip = tuple[TipComponent, TipComponent]
+Elevation = Annotated[float, Field(ge=0.0, le=MAX_ELEVATION)]
 Angle = Annotated[float, Field(ge=-MAX_ANGLE, le=MAX_ANGLE)]
 # The game (frame) of the match an action is meant for: `match.games_played` + 1. An action
 # that names a game that is over (sent just before it ended) is refused as stale.
@@ -29,22 +31,19 @@ class ClientMessage(BaseModel):
     model_config = ConfigDict(extra="forbid", allow_inf_nan=False, strict=True, frozen=True)
 
 
-def _check_tip(tip: tuple[float, float]) -> None:
-    if math.hypot(*tip) > MAX_TIP + 1e-12:
-        raise ValueError(f"tip offset must be within {MAX_TIP} of the radius")
-
-
 class Shoot(ClientMessage):
-    """Strike the cue ball: direction (rad), cue-ball speed (m/s), tip offset [side, height]."""
+    """Strike the cue ball: direction (rad), cue-ball speed (m/s), tip offset [side, height],
+    the cue's elevation (rad; an old client leaves it out and plays level)."""
 
     type: Literal["shoot"]
     angle: Angle
     speed: Annotated[float, Field(gt=0.0, le=MAX_SPEED)]
     tip: Tip = (0.0, 0.0)
+    elevation: Elevation = 0.0
 
     @model_validator(mode="after")
-    def _tip_in_circle(self) -> Shoot:
-        _check_tip(self.tip)
+    def _tip_reachable(self) -> Shoot:
+        check_stroke(self.tip, self.elevation)
         return self
 
 
@@ -66,12 +65,13 @@ class Aim(ClientMessage):
     angle: Angle
     power: Annotated[float, Field(ge=0.0, le=1.0)]
     tip: Tip = (0.0, 0.0)
+    elevation: Elevation = 0.0
     # Ball in hand: where the cue ball is being dragged (metres), so the others see it move.
     cue: tuple[Coordinate, Coordinate] | None = None
 
     @model_validator(mode="after")
-    def _tip_in_circle(self) -> Aim:
-        _check_tip(self.tip)
+    def _tip_reachable(self) -> Aim:
+        check_stroke(self.tip, self.elevation)
         return self
 
 
@@ -180,6 +180,9 @@ def parse_client_message(text: str) -> AnyClientMessage:
             ) from None
         ref = _type_of(text)
         first = errors[0]
+        error = first.get("ctx", {}).get("error")
+        if isinstance(error, Miscue):
+            raise BadMessage("miscue", str(error), ref) from None
         where = ".".join(str(p) for p in first["loc"][1:]) or "message"
         raise BadMessage("bad_message", f"{where}: {first['msg']}", ref) from None
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from pydantic import BaseModel
 
-from server.engine import MAX_SPEED, MAX_TIP
+from server.engine import MAX_ELEVATION, MAX_SPEED, MAX_TIP
 from server.engine.shot import DEFAULT_CUE_MASS_RATIO
 
 PROTOCOL_VERSION = 1
@@ -23,7 +23,8 @@ class Limits(BaseModel):
     """What a client needs to build valid messages."""
 
     max_speed: float = MAX_SPEED  # m/s of the cue ball
-    max_tip: float = MAX_TIP  # tip offset, a fraction of the radius
+    max_tip: float = MAX_TIP  # tip offset, a fraction of the radius (level cue; see miscue)
+    max_elevation: float = MAX_ELEVATION  # the cue's angle above the bed, radians
     max_angle: float = MAX_ANGLE
     max_name: int = MAX_NAME
     max_chat: int = MAX_CHAT

@@ -4,8 +4,10 @@ The engine traces the shot in the same compiled call that simulates it
 (`ShotInMotion.run(trace=...)`: per ball, knots at its contacts and wherever a straight line
 would stray more than the tolerance). Here the knots are quantised and packed: a header,
 one track per ball (knots: time in microseconds, position in 0.1 mm, rolled angle in 1/4096
-turn; the first absolute, then LEB128 varint deltas), then the sounds (docs/protocol.md,
-`motion`). The packing is compiled too but keeps the GIL: it takes microseconds, and
+turn, and in version 2 the height in 0.1 mm; the first absolute, then LEB128 varint
+deltas), then the sounds (docs/protocol.md, `motion`). A shot where no ball leaves the bed
+is version 1, byte for byte as before heights existed; one with a jump or a hop is
+version 2. The packing is compiled too but keeps the GIL: it takes microseconds, and
 releasing the GIL would make a shot's thread win it back a second time.
 """
 
@@ -22,7 +24,9 @@ from numba import njit
 from server.engine import BallSet, Event, Shot, ShotInMotion, Table, Tolerance, Trace
 
 MOTION_KIND = 1  # first byte of every binary server message: which one it is
-MOTION_VERSION = 1
+MOTION_VERSION = 1  # no ball leaves the bed
+MOTION_VERSION_HEIGHTS = 2  # every knot also has the ball's height
+OFF_TABLE_POCKET = 254  # version 2: the ball flew off the table (255: it stays on it)
 POSITION_UNIT = 1e-4  # m: positions in 0.1 mm
 TIME_UNIT = 1e-6  # s: times in microseconds
 PHASE_STEPS = 4096  # rolled angle in 1/4096 of a turn (a sprite cel is 1/16)
@@ -32,7 +36,8 @@ TRACE = Tolerance(TOLERANCE, PHASE_TOLERANCE)
 NO_BALL = 255
 HEADER = struct.Struct("<BBIIIBH")  # kind, version, seq, shot, duration_us, balls, events
 SEQ_OFFSET = 2
-SOUND_CODES = {"strike": 0, "ball": 1, "cushion": 2, "jaw": 3, "pocket": 4}
+# `land` (a flying ball meets the slate) only happens in a version 2 message.
+SOUND_CODES = {"strike": 0, "ball": 1, "cushion": 2, "jaw": 3, "pocket": 4, "land": 5}
 
 
 @njit(cache=True, inline="always")
@@ -50,6 +55,30 @@ def _zigzag(buf: np.ndarray, at: int, value: int) -> int:
     return _varint(buf, at, (value << 1) if value >= 0 else ((-value) << 1) - 1)
 
 
+@njit(cache=True, inline="always")
+def _first_knot(
+    buf: np.ndarray, at: int, tt: int, x: int, y: int, ph: int, zz: int, with_z: bool
+) -> int:
+    """A track's first knot: varint time, x and y as i16, roll as u16, height as u16."""
+    at = _varint(buf, at, tt)
+    first = ph % 4096
+    x16 = x & 65535
+    y16 = y & 65535
+    buf[at] = x16 & 255
+    buf[at + 1] = x16 >> 8
+    buf[at + 2] = y16 & 255
+    buf[at + 3] = y16 >> 8
+    buf[at + 4] = first & 255
+    buf[at + 5] = first >> 8
+    at += 6
+    if with_z:
+        z16 = min(zz, 65535)
+        buf[at] = z16 & 255
+        buf[at + 1] = z16 >> 8
+        at += 2
+    return at
+
+
 @njit(cache=True)
 def pack_tracks(
     ids: np.ndarray,
@@ -59,18 +88,26 @@ def pack_tracks(
     phase: np.ndarray,
     knots: np.ndarray,
     offsets: np.ndarray,
+    z: np.ndarray,
+    with_z: bool,
 ) -> np.ndarray:
     """The tracks section (see docs/protocol.md): per ball id, pocket, knot count, the first
-    knot absolute, then varint deltas of time, x, y and roll. Holds the GIL (see above)."""
+    knot absolute, then varint deltas of time, x, y and roll, and `with_z` (version 2) of
+    the height too. Holds the GIL (see above)."""
     n = ids.shape[0]
-    buf = np.empty(16 * n + 16 * knots.shape[0], dtype=np.uint8)
+    buf = np.empty(16 * n + 20 * knots.shape[0], dtype=np.uint8)
     at = 0
     for b in range(n):
         lo, hi = offsets[b], offsets[b + 1]
         if hi == lo:
             continue
         buf[at] = ids[b]
-        buf[at + 1] = pocket_of[b] if pocket_of[b] >= 0 else 255
+        if pocket_of[b] >= 0:
+            buf[at + 1] = pocket_of[b]
+        elif pocket_of[b] == -2 and with_z:
+            buf[at + 1] = 254
+        else:
+            buf[at + 1] = 255
         buf[at + 2] = (hi - lo) & 255
         buf[at + 3] = (hi - lo) >> 8
         at += 4
@@ -78,31 +115,25 @@ def pack_tracks(
         prev_x = 0
         prev_y = 0
         prev_p = 0
+        prev_z = 0
         for k in range(lo, hi):
             i = knots[k]
             tt = int(round(t[i] * 1e6))  # noqa: RUF046 (the compiled type)
             x = int(round(pos[i, b, 0] * 1e4))  # noqa: RUF046 (the compiled type)
             y = int(round(pos[i, b, 1] * 1e4))  # noqa: RUF046 (the compiled type)
             ph = int(round(phase[i, b] / (2.0 * math.pi) * 4096.0))  # noqa: RUF046 (the compiled type)
+            zz = max(int(round(z[i, b] * 1e4)), 0)  # noqa: RUF046 (the compiled type)
             if k == lo:
-                at = _varint(buf, at, tt)
-                first = ph % 4096
-                x16 = x & 65535
-                y16 = y & 65535
-                buf[at] = x16 & 255
-                buf[at + 1] = x16 >> 8
-                buf[at + 2] = y16 & 255
-                buf[at + 3] = y16 >> 8
-                buf[at + 4] = first & 255
-                buf[at + 5] = first >> 8
-                at += 6
-                prev_t, prev_x, prev_y, prev_p = tt, x, y, ph
+                at = _first_knot(buf, at, tt, x, y, ph, zz, with_z)
+                prev_t, prev_x, prev_y, prev_p, prev_z = tt, x, y, ph, zz
             else:
                 at = _varint(buf, at, tt - prev_t)
                 at = _zigzag(buf, at, x - prev_x)
                 at = _zigzag(buf, at, y - prev_y)
                 at = _zigzag(buf, at, ph - prev_p)
-                prev_t, prev_x, prev_y, prev_p = tt, x, y, ph
+                if with_z:
+                    at = _zigzag(buf, at, zz - prev_z)
+                prev_t, prev_x, prev_y, prev_p, prev_z = tt, x, y, ph, zz
     return buf[:at].copy()
 
 
@@ -118,20 +149,24 @@ class Tracks:
     on_table: np.ndarray  # (S, N)
     knots: np.ndarray
     offsets: np.ndarray
-    pockets: np.ndarray  # (N,) pocket index or -1
+    pockets: np.ndarray  # (N,) pocket index, -1, or OFF_TABLE (-2)
     ticks: int
     packed: bytes  # the tracks section of the message
+    version: int = MOTION_VERSION  # MOTION_VERSION_HEIGHTS when some ball flies
 
 
 def tracks_of(trace: Trace) -> Tracks:
-    """The trace with its tracks section packed."""
+    """The trace with its tracks section packed (with heights when some ball flies)."""
+    flies = trace.flies
+    heights = trace.heights if trace.heights is not None else np.zeros(trace.phases.shape)
     packed = pack_tracks(
         trace.ids, trace.pockets, trace.times, trace.positions, trace.phases, trace.knots,
-        trace.offsets,
+        trace.offsets, heights, flies,
     )  # fmt: skip
+    version = MOTION_VERSION_HEIGHTS if flies else MOTION_VERSION
     return Tracks(
         trace.ids, trace.times, trace.positions, trace.phases, trace.on_table, trace.knots,
-        trace.offsets, trace.pockets, trace.ticks, packed.tobytes(),
+        trace.offsets, trace.pockets, trace.ticks, packed.tobytes(), version,
     )  # fmt: skip
 
 
@@ -172,12 +207,17 @@ def _put_varint(out: bytearray, value: int) -> None:
 
 
 def motion_bytes(
-    shot_id: int, duration: float, tracks: bytes, balls: int, sounds: list[Event]
+    shot_id: int,
+    duration: float,
+    tracks: bytes,
+    balls: int,
+    sounds: list[Event],
+    version: int = MOTION_VERSION,
 ) -> bytes:
     """The whole binary `motion` message, `seq` 0 (`with_seq` sets it per broadcast)."""
     head = HEADER.pack(
         MOTION_KIND,
-        MOTION_VERSION,
+        version,
         0,
         shot_id,
         round(duration / TIME_UNIT),
@@ -198,11 +238,13 @@ SOUND_KINDS = tuple(SOUND_CODES)
 def decode_motion(message: bytes) -> dict[str, Any]:
     """The binary `motion` message as plain values (tests, benchmarks, outside clients in
     Python): `type`, `seq`, `shot`, `duration` (s), `tracks` (per ball: `id`, `pocket`,
-    knot `t` (s), `x`, `y` (m) and `phase` (rad rolled, from the first knot's angle)) and
-    `sounds` (`t`, `kind`, `ids`, `speed`, `target`, as the engine's events)."""
+    knot `t` (s), `x`, `y` (m) and `phase` (rad rolled, from the first knot's angle); in
+    version 2 also `z` (m) and `off_table`) and `sounds` (`t`, `kind`, `ids`, `speed`,
+    `target`, as the engine's events)."""
     kind, version, seq, shot, duration, balls, count = HEADER.unpack_from(message)
-    if kind != MOTION_KIND or version != MOTION_VERSION:
-        raise ValueError(f"not a motion message of version {MOTION_VERSION}")
+    if kind != MOTION_KIND or version not in (MOTION_VERSION, MOTION_VERSION_HEIGHTS):
+        raise ValueError(f"not a motion message of version {MOTION_VERSION} or 2")
+    with_z = version == MOTION_VERSION_HEIGHTS
     at = HEADER.size
     tracks = []
     for _ in range(balls):
@@ -211,6 +253,10 @@ def decode_motion(message: bytes) -> dict[str, Any]:
         t, at = _get_varint(message, at)
         x, y, phase = struct.unpack_from("<hhH", message, at)
         at += 6
+        zs = [0]
+        if with_z:
+            (zs[0],) = struct.unpack_from("<H", message, at)
+            at += 2
         ts, xs, ys, phases = [t], [x], [y], [phase]
         for _ in range(knots - 1):
             dt, at = _get_varint(message, at)
@@ -221,16 +267,21 @@ def decode_motion(message: bytes) -> dict[str, Any]:
             xs.append(xs[-1] + dx)
             ys.append(ys[-1] + dy)
             phases.append(phases[-1] + dp)
-        tracks.append(
-            {
-                "id": ball,
-                "pocket": None if pocket == NO_BALL else pocket,
-                "t": [v / 1e6 for v in ts],
-                "x": [v / 1e4 for v in xs],
-                "y": [v / 1e4 for v in ys],
-                "phase": [v * 2 * math.pi / PHASE_STEPS for v in phases],
-            }
-        )
+            if with_z:
+                dz, at = _get_zigzag(message, at)
+                zs.append(zs[-1] + dz)
+        track: dict[str, Any] = {
+            "id": ball,
+            "pocket": None if pocket in (NO_BALL, OFF_TABLE_POCKET) else pocket,
+            "t": [v / 1e6 for v in ts],
+            "x": [v / 1e4 for v in xs],
+            "y": [v / 1e4 for v in ys],
+            "phase": [v * 2 * math.pi / PHASE_STEPS for v in phases],
+        }
+        if with_z:
+            track["z"] = [v / 1e4 for v in zs]
+            track["off_table"] = pocket == OFF_TABLE_POCKET
+        tracks.append(track)
     sounds = []
     time = 0
     for _ in range(count):

@@ -175,6 +175,8 @@ class AimRelay(ServerMessage):
     angle: float
     power: float
     tip: tuple[float, float]
+    # The cue's elevation (rad); left out for a level cue, as before it existed.
+    elevation: float = Field(default=0.0, exclude_if=lambda v: v == 0.0)
     # Ball in hand: where the cue ball is being dragged; left out of the message otherwise.
     cue: tuple[float, float] | None = Field(default=None, exclude_if=lambda v: v is None)
 

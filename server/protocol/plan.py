@@ -21,7 +21,7 @@ from server.engine import BALL_RADIUS, TICK_HZ, Event, ShotResult
 
 from .motion import Tracks, motion_bytes, pack_tracks
 
-SOUND_KINDS = frozenset(("strike", "ball", "cushion", "jaw", "pocket"))
+SOUND_KINDS = frozenset(("strike", "ball", "cushion", "jaw", "pocket", "land"))
 ALWAYS_SENT = frozenset(("strike", "pocket"))
 MAX_SOUNDS_PER_TICK = 12  # a rack's contacts can come by the thousand in one tick
 SOUND_GAP = 0.05  # s: the same contact again within this is one sound
@@ -146,7 +146,7 @@ def plan_shot(result: ShotResult, tracks: Tracks, shot_id: int, frame_every: int
     sounds = [event for _, event in _sounds(result.events, result.frames.tick)]
     duration = result.duration
     balls = int(np.count_nonzero(np.diff(tracks.offsets)))
-    message = motion_bytes(shot_id, duration, tracks.packed, balls, sounds)
+    message = motion_bytes(shot_id, duration, tracks.packed, balls, sounds, tracks.version)
     return ShotPlan(shot_id, stream_frames(result, frame_every), message, duration, len(sounds))
 
 
@@ -240,6 +240,8 @@ def stored_motion(text: str, shot_id: int) -> bytes:
         phases,
         np.array(knots, dtype=np.int64),
         np.array(offsets, dtype=np.int64),
+        np.zeros(phases.shape),
+        False,
     ).tobytes()
     sounds.sort(key=lambda e: e.time)
     duration = ticks[-1] / TICK_HZ if ticks else 0.0

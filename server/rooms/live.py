@@ -221,12 +221,14 @@ class LiveRoom:
                 self.stream.send_state(conn)
             case Chat(text=line):
                 self.chat.say(conn, line)
-            case Aim(angle=angle, power=power, tip=tip, cue=cue):
+            case Aim(angle=angle, power=power, tip=tip, elevation=elevation, cue=cue):
                 room.check_aim(seat)
-                relay = AimRelay(seat=seat, angle=angle, power=power, tip=tip, cue=cue)
+                relay = AimRelay(
+                    seat=seat, angle=angle, power=power, tip=tip, elevation=elevation, cue=cue
+                )
                 self.stream.relay(relay, exclude=conn)
-            case Shoot(angle=angle, speed=speed, tip=tip):
-                self.start_shot(seat, _shot(angle, speed, tip))
+            case Shoot(angle=angle, speed=speed, tip=tip, elevation=elevation):
+                self.start_shot(seat, _shot(angle, speed, tip, elevation))
             case PlaceCue() | Call() | Decide() | PushOut() | Rerack():
                 self._arrange(seat, msg)
                 self.changed()
@@ -327,8 +329,8 @@ class LiveRoom:
         self.observer.room_changed(self.room)
 
 
-def _shot(angle: float, speed: float, tip: tuple[float, float]) -> Shot:
+def _shot(angle: float, speed: float, tip: tuple[float, float], elevation: float) -> Shot:
     try:
-        return Shot(angle, speed, tip)
+        return Shot(angle, speed, tip, elevation)
     except ValueError as exc:
         raise ActionError("bad_message", str(exc)) from None

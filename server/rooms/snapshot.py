@@ -133,9 +133,10 @@ def room_from_snapshot(data: dict[str, Any]) -> SavedRoom:
     room.shots_by_seat = list(by_seat) if by_seat else [saved.shots_played] * len(room.seats)
     room.rematch_votes = set(saved.rematch_votes)
     p = saved.pending
-    pending = None if p is None else (p.seat, Shot(p.angle, p.speed, p.tip))
+    pending = None if p is None else (p.seat, Shot(p.angle, p.speed, p.tip, p.elevation))
     return SavedRoom(room, saved.match_id, pending, None if p is None else p.id)
 
 
 def pending_shot(shot_id: int, seat: int, shot: Shot) -> PendingShot:
-    return PendingShot(shot_id, seat, shot.angle, shot.speed, (shot.tip[0], shot.tip[1]))
+    tip = (shot.tip[0], shot.tip[1])
+    return PendingShot(shot_id, seat, shot.angle, shot.speed, tip, shot.elevation)

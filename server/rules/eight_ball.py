@@ -1,5 +1,9 @@
 """8-ball, WPA World Standardized Rules, judged from a position and a shot's facts.
 
+A ball driven off the table is a foul (WPA General Rules) and stays off, but the 8: off
+the table after the break it loses the game (WPA 8-ball, "loss of game"), on the break it
+is spotted as when it drops there.
+
 Only the 8 is called (its pocket); other balls count wherever they drop. Three fouls in a
 row are no loss in WPA 8-ball, so nothing here counts them.
 """
@@ -76,7 +80,11 @@ def judge_break(pos: Position, facts: ShotFacts) -> Ruling:
     name, opp_name = pos.shooter, pos.players[opp]
     r = Ruling()
     if facts.scratch:
-        r.fouls.append(fouls.scratch(name))
+        r.fouls.append(fouls.scratch(name, facts.cue_off_table))
+    if facts.off_table:
+        r.fouls.append(fouls.ball_off_table(name, facts.off_table))
+        if EIGHT in facts.off_table:
+            r.spot = (EIGHT,)
     if EIGHT in facts.pocketed:
         r.pending = "eight_on_break"
         r.notes.append(f"{name} pocketed the 8 on the break.")
@@ -109,6 +117,8 @@ def judge_break(pos: Position, facts: ShotFacts) -> Ruling:
     r.notes.append("Legal break. The table is open.")
     if facts.scratch:
         r.ball_in_hand = break_ball_in_hand(pos)
+    elif r.fouls:
+        r.ball_in_hand = ANYWHERE
     else:
         r.continues = facts.any_pocketed
     return r
@@ -129,7 +139,12 @@ def judge_shot(pos: Position, facts: ShotFacts) -> Ruling:
         if not facts.rail_after_contact and not facts.any_pocketed:
             r.fouls.append(fouls.no_rail(name))
     if facts.scratch:
-        r.fouls.append(fouls.scratch(name))
+        r.fouls.append(fouls.scratch(name, facts.cue_off_table))
+    if facts.off_table:
+        r.fouls.append(fouls.ball_off_table(name, facts.off_table))
+        if EIGHT in facts.off_table:
+            r.winner, r.reason = opp, f"{name} drove the 8 off the table."
+            return r
 
     if EIGHT in facts.pocketed:
         return _eight_dropped(pos, facts, r, was_on_eight)

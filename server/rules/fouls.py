@@ -12,6 +12,7 @@ LABELS = {
     "no_rail": "no rail after contact",
     "illegal_break": "illegal break",
     "shot_clock": "time ran out",
+    "ball_off_table": "ball off the table",
 }
 
 
@@ -20,8 +21,18 @@ def label(foul: Foul) -> str:
     return LABELS.get(foul.code, foul.code.replace("_", " "))
 
 
-def scratch(name: str) -> Foul:
+def scratch(name: str, off_table: bool = False) -> Foul:
+    """The cue ball pocketed, or driven off the table (WPA General Rules: both scratches)."""
+    if off_table:
+        return Foul("scratch", f"{name} scratched: the cue ball left the table.")
     return Foul("scratch", f"{name} scratched: the cue ball went into a pocket.")
+
+
+def ball_off_table(name: str, off: tuple[int, ...]) -> Foul:
+    """An object ball driven off the table (WPA General Rules, "balls driven off the
+    table": a foul; whether it comes back is the game's rule)."""
+    words = ", ".join(ball(b) for b in off)
+    return Foul("ball_off_table", f"{name} drove {words} off the table.")
 
 
 def no_contact(name: str) -> Foul:

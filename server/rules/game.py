@@ -271,7 +271,7 @@ class Game:
             raise IllegalActionError("bad_result", "The shot was not played on this table.")
         facts = shot_facts(self.balls, result)
         ruling = self.rules.judge(self.position(), facts)
-        pocketed = facts.pocketed + ((CUE,) if facts.scratch else ())
+        pocketed = facts.pocketed + ((CUE,) if facts.scratch and not facts.cue_off_table else ())
         if facts.pocketed:
             ruling.notes.insert(0, f"{self.players[seat]} pocketed {balls(facts.pocketed)}.")
         final = result.final.copy()

@@ -2,7 +2,8 @@
 
 The lowest-numbered ball must be hit first; any ball pocketed on a legal shot counts; the 9
 pocketed legally wins, on the break or in a combination; an illegally pocketed 9 is
-re-spotted; three fouls in a row lose.
+re-spotted; three fouls in a row lose. A ball driven off the table is a foul (WPA General
+Rules); the 9 driven off is spotted as an illegally pocketed 9 is, the others stay off.
 """
 
 from __future__ import annotations
@@ -38,7 +39,8 @@ def judge_push_out(pos: Position, facts: ShotFacts) -> Ruling:
     name, opp = pos.shooter, pos.opponent
     r = Ruling()
     if facts.scratch:
-        r.fouls.append(fouls.scratch(name))
+        r.fouls.append(fouls.scratch(name, facts.cue_off_table))
+    _off_table(name, facts, r)
     if NINE in facts.pocketed:
         r.spot = (NINE,)
     if r.fouls:
@@ -70,7 +72,8 @@ def judge_shot(pos: Position, facts: ShotFacts) -> Ruling:
     if breaking and not facts.any_pocketed and len(facts.balls_to_rail) < 4:
         r.fouls.append(fouls.illegal_break(name, len(facts.balls_to_rail)))
     if facts.scratch:
-        r.fouls.append(fouls.scratch(name))
+        r.fouls.append(fouls.scratch(name, facts.cue_off_table))
+    _off_table(name, facts, r)
     r.push_out_next = breaking
     if NINE in facts.pocketed:
         if r.fouls:
@@ -89,6 +92,14 @@ def judge_shot(pos: Position, facts: ShotFacts) -> Ruling:
     else:
         r.continues = facts.any_pocketed
     return r
+
+
+def _off_table(name: str, facts: ShotFacts, r: Ruling) -> None:
+    """A ball off the table: a foul; the 9 comes back on its spot."""
+    if facts.off_table:
+        r.fouls.append(fouls.ball_off_table(name, facts.off_table))
+        if NINE in facts.off_table:
+            r.spot = (NINE,)
 
 
 def lose_on_last_foul(pos: Position, r: Ruling) -> Ruling:

@@ -1,14 +1,15 @@
 """The facts a referee needs from a shot, read from the engine's events and final table.
 
-The engine is 2-D, so balls never leave the table: there is no "off the table" fact here,
-and no rule below acts on one.
+A ball the engine put out of play is pocketed, or off the table (a jump that cleared a
+rail: its pocket is `OFF_TABLE`); the cue ball off the table is a scratch (WPA General
+Rules, "cue ball scratch or off the table").
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from server.engine import CUE, BallSet, EventKind, MotionState, Settled, ShotResult
+from server.engine import CUE, OFF_TABLE, BallSet, EventKind, MotionState, Settled, ShotResult
 from server.engine.results import EVENT_CODES
 
 # Kind codes of `contacts()` (read once: a shot's facts are read for every simulated shot).
@@ -27,8 +28,10 @@ class ShotFacts:
     rail_after_contact: some ball reached a cushion (or a pocket point) after that contact.
     pocketed: object balls that dropped, in the order they dropped.
     pockets: pocket index (into `Table.pockets`) of each dropped ball, cue ball included.
-    scratch: the cue ball dropped.
+    scratch: the cue ball dropped, or left the table.
     balls_to_rail: distinct object balls that reached a cushion (counts for a legal break).
+    off_table: object balls that left the table (never in `pocketed`), in id order.
+    cue_off_table: the cue ball left the table (a scratch).
     """
 
     first_contact: int | None
@@ -37,6 +40,8 @@ class ShotFacts:
     pockets: dict[int, int]
     scratch: bool
     balls_to_rail: frozenset[int]
+    off_table: tuple[int, ...] = ()
+    cue_off_table: bool = False
 
     @property
     def any_pocketed(self) -> bool:
@@ -71,6 +76,12 @@ def shot_facts(before: BallSet, result: ShotResult | Settled) -> ShotFacts:
             pockets[ball] = target
     final = result.final
     gone = (before.states != _POCKETED) & (final.states == _POCKETED)
+    flown: set[int] = set()
+    if gone.any():
+        off = gone & (final.pockets == OFF_TABLE)
+        if off.any():
+            flown = set(final.ids[off].tolist())
+            gone = gone & ~off
     dropped = set(final.ids[gone].tolist()) if gone.any() else set()
     if dropped != pockets.keys():
         for ball in sorted(dropped - set(order)):
@@ -83,6 +94,8 @@ def shot_facts(before: BallSet, result: ShotResult | Settled) -> ShotFacts:
         rail_after_contact=rail_after_contact,
         pocketed=tuple(b for b in order if b != CUE),
         pockets=pockets,
-        scratch=CUE in dropped,
+        scratch=CUE in dropped or CUE in flown,
         balls_to_rail=frozenset(to_rail),
+        off_table=tuple(sorted(flown - {CUE})),
+        cue_off_table=CUE in flown,
     )

@@ -61,6 +61,7 @@ class PendingShot:
     angle: float
     speed: float
     tip: tuple[float, float]
+    elevation: float = 0.0  # a room saved before elevation existed played level shots
 
 
 @dataclass

@@ -6,7 +6,16 @@ import math
 
 import numpy as np
 
-from server.engine import BallSet, Event, FrameSequence, MotionState, Shot, ShotResult, Table
+from server.engine import (
+    OFF_TABLE,
+    BallSet,
+    Event,
+    FrameSequence,
+    MotionState,
+    Shot,
+    ShotResult,
+    Table,
+)
 from server.rules import Game
 
 TABLE = Table.pool("9ft")
@@ -24,9 +33,15 @@ def pot(ball: int, pocket: int = 0) -> Event:
     return Event(0.0, "pocket", (ball,), 1.0, pocket)
 
 
+def off(ball: int, cushion: int = 0) -> Event:
+    """The ball flies over `cushion` and off the table (a jump gone wrong)."""
+    return Event(0.0, "off_table", (ball,), 3.0, cushion)
+
+
 def crafted(before: BallSet, *events: Event) -> ShotResult:
     """A ShotResult whose final table is `before` with the balls of the pocket events
-    dropped; event times increase in the order given."""
+    dropped and those of the off-table events out of play (pocket OFF_TABLE); event times
+    increase in the order given."""
     timed = [Event(0.0, "strike", (0,), 2.0)]
     timed += [Event(0.01 * (k + 1), e.kind, e.ids, e.speed, e.target) for k, e in enumerate(events)]
     final = before.copy()
@@ -36,6 +51,10 @@ def crafted(before: BallSet, *events: Event) -> ShotResult:
             final.states[row] = MotionState.POCKETED
             final.pockets[row] = e.target
             final.positions[row] = TABLE.pockets[e.target].center
+        elif e.kind == "off_table":
+            row = final.index(e.ids[0])
+            final.states[row] = MotionState.POCKETED
+            final.pockets[row] = OFF_TABLE
     n = len(before)
     frames = FrameSequence(
         1 / 120, np.empty((0, n, 2)), np.empty((0, n), dtype=np.int64), np.empty((0, n), dtype=bool)

@@ -59,7 +59,8 @@ export class TableAudio {
   }
 
   /**
-   * Play a table event: kind "strike" | "ball" | "cushion" | "jaw" | "pocket".
+   * Play a table event: kind "strike" | "ball" | "cushion" | "jaw" | "pocket" | "land" (a
+   * flying ball back on the slate: a duller thump than a rail's).
    * @param {string} kind
    * @param {number} speed impact speed, m/s
    */
@@ -73,6 +74,7 @@ export class TableAudio {
       case 'ball': this.click(now, impactGain(speed, 5)); break;
       case 'cushion': case 'jaw': this.thump(now, impactGain(speed, 4)); break;
       case 'pocket': this.drop(now, 0.6 + 0.4 * impactGain(speed, 3)); break;
+      case 'land': this.thump(now, 0.6 * impactGain(speed, 3)); break;
       default: break;
     }
   }

@@ -344,6 +344,35 @@ export function clampTip(side, height, limit) {
 }
 
 /**
+ * The tip as the server's `shoot` names it (where the tip meets the ball seen from behind
+ * at the bed's level) for a tip seen along a cue raised `elevation` radians: the server's
+ * `tip_seen_level`. Level, it is the same tip.
+ * @param {number} side
+ * @param {number} height
+ * @param {number} elevation radians
+ * @returns {[number, number]}
+ */
+export function tipSeenLevel(side, height, elevation) {
+  if (elevation === 0) return [side, height];
+  const depth = Math.sqrt(Math.max(1 - side * side - height * height, 0));
+  return [side, Math.sin(elevation) * depth + Math.cos(elevation) * height];
+}
+
+/**
+ * The inverse of `tipSeenLevel`: a tip as the server names it (seen from behind at the
+ * bed's level) seen along a cue raised `elevation` radians.
+ * @param {number} side
+ * @param {number} height
+ * @param {number} elevation radians
+ * @returns {[number, number]}
+ */
+export function tipAlongCue(side, height, elevation) {
+  if (elevation === 0) return [side, height];
+  const depth = Math.sqrt(Math.max(1 - side * side - height * height, 0));
+  return [side, Math.cos(elevation) * height - Math.sin(elevation) * depth];
+}
+
+/**
  * How far side spin turns the cue ball off the aim line (radians, positive to the left):
  * the same formula as the server's `Shot.squirt` (Alciatore, TP A-31), with the server's
  * cue mass ratio, so the guide shows the path the ball will take.

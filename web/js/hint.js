@@ -16,7 +16,7 @@ import { drawCue, drawGuide } from './render.js';
  * @typedef {{level: string, kind: string, place: [number, number] | null,
  *   call: number | null, angle: number, speed: number, tip: [number, number],
  *   target: number | null, pocket: number | null, chance: number | null,
- *   via?: string | null}} Hint
+ *   via?: string | null, elevation?: number}} Hint
  */
 
 const SPIN_WORDS = 0.08; // a tip offset (fraction of the radius) below this is "centre"

@@ -13,6 +13,7 @@
 
 import {
   castGuide, squirt, pullPower, speedFromPower, placeCue, placementArea, pocketAt, dist, clampTip,
+  tipSeenLevel,
 } from './geometry.js';
 
 /**
@@ -75,8 +76,9 @@ export class AimController {
   constructor() {
     this.angle = 0; // radians, table frame
     this.power = 0;
-    /** @type {[number, number]} */
+    /** @type {[number, number]} where the tip strikes, seen along the cue */
     this.tip = [0, 0];
+    this.elevation = 0; // the cue's angle above the bed, radians
     /** @type {'idle'|'pulling'|'placing'} */
     this.mode = 'idle';
     /** @type {[number, number] | null} */
@@ -234,9 +236,17 @@ export class AimController {
     const { max_speed: maxSpeed, max_tip: maxTip } = limits;
     const tip = clampTip(this.tip[0], this.tip[1], maxTip);
     const rounded = tip.map(round6);
-    return { type: 'shoot', angle: round6(this.angle),
-      speed: Math.min(maxSpeed, round6(speedFromPower(this.power, maxSpeed))),
-      tip: Math.hypot(rounded[0], rounded[1]) <= maxTip ? rounded : tip.map(trunc6) };
+    const level = Math.hypot(rounded[0], rounded[1]) <= maxTip ? rounded : tip.map(trunc6);
+    const out = { type: 'shoot', angle: round6(this.angle),
+      speed: Math.min(maxSpeed, round6(speedFromPower(this.power, maxSpeed))), tip: level };
+    const elevation = Math.min(Math.max(trunc6(this.elevation), 0), limits.max_elevation);
+    if (elevation > 0) {
+      // A raised cue: the server names the tip as seen from behind at the bed's level (a
+      // hair inside the miscue limit, so the rounding cannot carry it over).
+      const [side, height] = tipSeenLevel(level[0] * 0.999, level[1] * 0.999, elevation);
+      return { ...out, tip: [trunc6(side), trunc6(height)], elevation };
+    }
+    return out;
   }
 
   /**

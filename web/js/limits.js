@@ -14,6 +14,7 @@
  * @typedef {object} Limits
  * @property {number} max_speed cue-ball speed of a shot, m/s
  * @property {number} max_tip tip offset |(side, height)|, fraction of the ball radius
+ * @property {number} max_elevation the cue's largest angle above the bed, radians
  * @property {number} max_angle |angle| of a shot or an aim, radians
  * @property {number} max_name characters of a player's name
  * @property {number} max_chat characters of a chat line
@@ -31,6 +32,7 @@
 export const DEFAULT_LIMITS = Object.freeze({
   max_speed: 12.0,
   max_tip: 0.5,
+  max_elevation: 1.3962634015954636,
   max_angle: 10.0,
   max_name: 24,
   max_chat: 200,

@@ -28,8 +28,8 @@ else if (route.screen === 'login') startLogin();
 else startLobby();
 
 // A contract for outside tests: what the renderer would draw t seconds after the strike of
-// the shot being shown (or the last one shown, until the next starts): [{id, x, y, cel}] in
-// table metres, the balls on the table at t.
+// the shot being shown (or the last one shown, until the next starts): [{id, x, y, z, cel}]
+// in table metres, the balls on the table at t (z: a flying ball's height, 0 on the bed).
 /** @type {any} */ (window).pool = Object.freeze({
   /** @param {number} t */
   track: (t) => shownTrack(t),

@@ -19,7 +19,7 @@
 import { motionAt } from './track.js';
 
 /** @typedef {import('./track.js').Motion} Motion */
-/** @typedef {{x: number, y: number, cel: number, heading: number, speed: number}} ShownBall */
+/** @typedef {{x: number, y: number, z?: number, cel: number, heading: number, speed: number}} ShownBall */
 /** @typedef {Map<number, ShownBall>} BallMap id -> where to draw the ball now */
 /** @typedef {{id: number, x: number, y: number, cel?: number, on_table?: boolean}} RestBall */
 
@@ -224,14 +224,15 @@ export class ShotPlayback {
   /**
    * What the renderer draws t seconds after the strike of the current (or last) shot.
    * @param {number} t
-   * @returns {{id: number, x: number, y: number, cel: number}[]}
+   * `z`: the height of a flying ball above the bed (m), 0 on it.
+   * @returns {{id: number, x: number, y: number, z: number, cel: number}[]}
    */
   track(t) {
     if (!this.motion) {
-      return [...this.rest].map(([id, b]) => ({ id, x: b.x, y: b.y, cel: b.cel }));
+      return [...this.rest].map(([id, b]) => ({ id, x: b.x, y: b.y, z: 0, cel: b.cel }));
     }
     return motionAt(this.motion, t, this.cels).map((p) => ({ id: p.id, x: p.x, y: p.y,
-      cel: p.cel }));
+      z: p.z, cel: p.cel }));
   }
 
   /**
@@ -249,7 +250,8 @@ export class ShotPlayback {
       const heading = Number.isNaN(pose.heading) ? this.headings.get(pose.id) ?? 0
         : pose.heading;
       this.headings.set(pose.id, heading);
-      out.set(pose.id, { x: pose.x, y: pose.y, cel: pose.cel, heading, speed: pose.speed });
+      out.set(pose.id, { x: pose.x, y: pose.y, z: pose.z, cel: pose.cel, heading,
+        speed: pose.speed });
     }
     for (const track of motion.tracks) {
       const last = track.t.length - 1;

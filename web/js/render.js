@@ -285,21 +285,26 @@ function drawChalk(ctx, table, view) {
   }
 }
 
+const BALL_RADIUS_M = 0.028575; // the WPA ball's radius: a flying ball's height in radii
+
 /**
- * Balls at their (interpolated) positions: Map id -> {x, y, cel, heading}.
+ * Balls at their (interpolated) positions: Map id -> {x, y, z, cel, heading}; a flying
+ * ball (z > 0, metres) is drawn over the others, larger, with its shadow further off.
  * @param {Ctx} ctx
  * @param {View} view
  * @param {Sprites} sprites
- * @param {Map<number, {x: number, y: number, cel?: number, heading?: number}>} balls
+ * @param {Map<number, {x: number, y: number, z?: number, cel?: number, heading?: number}>} balls
  * @param {number} scaleToCss
  */
 export function drawBalls(ctx, view, sprites, balls, scaleToCss) {
-  const ids = [...balls.keys()].sort((a, b) => a - b);
+  const height = (/** @type {number} */ id) => balls.get(id)?.z ?? 0;
+  const ids = [...balls.keys()].sort((a, b) => height(a) - height(b) || a - b);
   for (const id of ids) {
     const b = balls.get(id);
     if (!b) continue;
     const [x, y] = view.toScreen(b.x, b.y);
-    drawBall(ctx, sprites, id, x, y, b.cel ?? 0, view.screenAngle(b.heading ?? 0), scaleToCss);
+    drawBall(ctx, sprites, id, x, y, b.cel ?? 0, view.screenAngle(b.heading ?? 0), scaleToCss,
+      (b.z ?? 0) / BALL_RADIUS_M);
   }
 }
 

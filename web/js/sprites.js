@@ -349,14 +349,23 @@ export function buildSprites(radiusPx, ids = [...Array(16).keys()]) {
  * @param {number} cel
  * @param {number} heading
  * @param {number} [scale]
+ * @param {number} [lift] the ball's height above the bed, in radii (0 on it)
  */
-export function drawBall(ctx, sprites, id, x, y, cel, heading, scale = 1) {
+export function drawBall(ctx, sprites, id, x, y, cel, heading, scale = 1, lift = 0) {
   const cels = sprites.cels[id];
   if (!cels) return;
-  const side = sprites.side * scale;
-  const sh = sprites.shadow.width * scale;
-  const off = sprites.radius * 0.22 * scale;
+  // A flying ball (lift: its height in radii) is nearer the eye, so drawn larger, and its
+  // shadow falls further off, smaller and fainter.
+  const up = Math.min(Math.max(lift, 0), 4);
+  const side = sprites.side * scale * (1 + 0.12 * up);
+  const sh = sprites.shadow.width * scale * (1 - 0.08 * up);
+  const off = sprites.radius * 0.22 * scale * (1 + 2.5 * up);
+  if (up > 0) {
+    ctx.save();
+    ctx.globalAlpha = 1 / (1 + 0.6 * up);
+  }
   ctx.drawImage(sprites.shadow, x - sh / 2 + off, y - sh / 2 + off * 1.2, sh, sh);
+  if (up > 0) ctx.restore();
   ctx.save();
   ctx.translate(x, y);
   ctx.rotate(heading);

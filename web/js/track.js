@@ -13,13 +13,15 @@
 
 export const MOTION_KIND = 1;
 export const MOTION_VERSION = 1;
+export const MOTION_VERSION_HEIGHTS = 2; // a ball flies: every knot has its height
+const OFF_TABLE = 254; // version 2: the ball flies off the table at its last knot
 const HEADER_BYTES = 17;
 const PER_METRE = 1e4; // positions in 0.1 mm
 const PER_SECOND = 1e6; // times in microseconds
 const HALF_TICK = 0.5 / PER_SECOND; // a time's rounding
 const PHASE_STEPS = 4096; // per turn
 const NO_BALL = 255;
-export const SOUND_KINDS = ['strike', 'ball', 'cushion', 'jaw', 'pocket'];
+export const SOUND_KINDS = ['strike', 'ball', 'cushion', 'jaw', 'pocket', 'land'];
 
 /**
  * @typedef {object} Track one ball's knots (typed arrays of the same length, time order)
@@ -29,6 +31,8 @@ export const SOUND_KINDS = ['strike', 'ball', 'cushion', 'jaw', 'pocket'];
  * @property {Float64Array} x metres
  * @property {Float64Array} y metres
  * @property {Float64Array} phase radians rolled
+ * @property {Float64Array} z metres above the bed's resting height (all 0 in version 1)
+ * @property {boolean} offTable it flies off the table at its last knot
  * @property {Float64Array} heading direction of travel after each knot (NaN: not moved yet)
  */
 /** @typedef {{t: number, kind: string, ids: number[], speed: number, target: number}} Sound */
@@ -41,7 +45,7 @@ export const SOUND_KINDS = ['strike', 'ball', 'cushion', 'jaw', 'pocket'];
  * @property {Track[]} tracks
  * @property {Sound[]} sounds time order
  */
-/** @typedef {{id: number, x: number, y: number, cel: number, heading: number, speed: number}} Pose */
+/** @typedef {{id: number, x: number, y: number, z: number, cel: number, heading: number, speed: number}} Pose */
 
 /**
  * Decode a `motion` message.
@@ -51,9 +55,12 @@ export const SOUND_KINDS = ['strike', 'ball', 'cushion', 'jaw', 'pocket'];
 export function decodeMotion(data) {
   const bytes = data instanceof Uint8Array ? data : new Uint8Array(data);
   const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
-  if (bytes.length < HEADER_BYTES || bytes[0] !== MOTION_KIND || bytes[1] !== MOTION_VERSION) {
+  const version = bytes[1];
+  if (bytes.length < HEADER_BYTES || bytes[0] !== MOTION_KIND
+    || (version !== MOTION_VERSION && version !== MOTION_VERSION_HEIGHTS)) {
     throw new Error('not a motion message');
   }
+  const heights = version === MOTION_VERSION_HEIGHTS;
   let at = HEADER_BYTES;
   const varint = () => {
     let value = 0;
@@ -83,25 +90,34 @@ export function decodeMotion(data) {
     const x = new Float64Array(knots);
     const y = new Float64Array(knots);
     const phase = new Float64Array(knots);
+    const z = new Float64Array(knots);
     let ti = varint();
     let xi = view.getInt16(at, true);
     let yi = view.getInt16(at + 2, true);
     let pi = view.getUint16(at + 4, true);
     at += 6;
+    let zi = 0;
+    if (heights) {
+      zi = view.getUint16(at, true);
+      at += 2;
+    }
     for (let k = 0; k < knots; k++) {
       if (k > 0) {
         ti += varint();
         xi += zigzag();
         yi += zigzag();
         pi += zigzag();
+        if (heights) zi += zigzag();
       }
       t[k] = ti / PER_SECOND;
       x[k] = xi / PER_METRE;
       y[k] = yi / PER_METRE;
       phase[k] = (pi / PHASE_STEPS) * 2 * Math.PI;
+      z[k] = zi / PER_METRE;
     }
-    tracks.push({ id, pocket: pocket === NO_BALL ? null : pocket, t, x, y, phase,
-      heading: headings(x, y) });
+    const offTable = heights && pocket === OFF_TABLE;
+    tracks.push({ id, pocket: pocket === NO_BALL || offTable ? null : pocket, t, x, y, phase,
+      z, offTable, heading: headings(x, y) });
   }
   /** @type {Sound[]} */
   const sounds = [];
@@ -173,13 +189,16 @@ function knotBefore(times, t) {
  * @returns {Pose | null}
  */
 export function trackAt(track, t, cels = 16) {
-  const { t: times, x, y, phase } = track;
+  const { t: times, x, y, phase, z } = track;
   const last = times.length - 1;
-  // A dropped ball is on the table up to its last knot (the drop), within the time unit.
-  if (track.pocket !== null && t > times[last] + HALF_TICK) return null;
+  // A dropped ball (or one that flew off the table) is on the table up to its last knot,
+  // within the time unit.
+  const leaves = track.pocket !== null || track.offTable;
+  if (leaves && t > times[last] + HALF_TICK) return null;
   const i = knotBefore(times, t);
   let px = x[i];
   let py = y[i];
+  let pz = z ? z[i] : 0;
   let ph = phase[i];
   let speed = 0;
   if (i < last && t > times[i]) {
@@ -187,10 +206,12 @@ export function trackAt(track, t, cels = 16) {
     const f = span > 0 ? (t - times[i]) / span : 1;
     px += (x[i + 1] - x[i]) * f;
     py += (y[i + 1] - y[i]) * f;
+    if (z) pz += (z[i + 1] - z[i]) * f;
     ph += (phase[i + 1] - phase[i]) * f;
     speed = span > 0 ? Math.hypot(x[i + 1] - x[i], y[i + 1] - y[i]) / span : 0;
   }
-  return { id: track.id, x: px, y: py, cel: celOf(ph, cels), heading: track.heading[i], speed };
+  return { id: track.id, x: px, y: py, z: pz, cel: celOf(ph, cels),
+    heading: track.heading[i], speed };
 }
 
 /**

@@ -1,6 +1,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import {
+  tipSeenLevel, tipAlongCue,
   makeView, castGuide, rayCircle, rayCushion, placementArea, placeCue, pocketAt, pullPower,
   speedFromPower, clampTip, squirt, MIN_SPEED,
 } from '../js/geometry.js';
@@ -163,4 +164,15 @@ test('the guide squirts like the server: Shot(…, tip=(x, 0)).squirt() with a r
     [0.5, 0.03291682876785524], [-0.5, -0.03291682876785524], [0, 0]];
   for (const [side, angle] of server) assert.ok(Math.abs(squirt(side, 30) - angle) < 1e-12);
   assert.ok(squirt(0.5, 60) < squirt(0.5, 30)); // a heavier tip end squirts more
+});
+
+test('a tip seen along a raised cue and seen level are one another\'s inverse', () => {
+  const e = Math.PI / 4;
+  const [side, height] = tipSeenLevel(0.2, -0.1, e);
+  const back = tipAlongCue(side, height, e);
+  assert.ok(Math.abs(back[0] - 0.2) < 1e-12 && Math.abs(back[1] + 0.1) < 1e-12);
+  assert.deepEqual(tipSeenLevel(0.3, 0.1, 0), [0.3, 0.1]);
+  // A jump through the centre (the computer's): centre ball along the cue.
+  const along = tipAlongCue(...tipSeenLevel(0, 0, e), e);
+  assert.ok(Math.abs(along[0]) < 1e-12 && Math.abs(along[1]) < 1e-12);
 });

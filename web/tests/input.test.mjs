@@ -110,3 +110,19 @@ test("the tip sent is clamped to the server's max_tip and never rounded outside 
   const edge = pullAndRelease(b, ctx(), MAX_PULL);
   assert.ok(Math.hypot(edge[0].tip[0], edge[0].tip[1]) <= 0.5);
 });
+
+test('a raised cue sends its elevation and the tip seen from behind at the bed', () => {
+  const a = new AimController();
+  a.tip = [0.5, 0];
+  a.elevation = Math.PI / 3;
+  const [shot] = pullAndRelease(a, ctx(), MAX_PULL);
+  assert.equal(shot.elevation, 1.047197);
+  assert.ok(Math.abs(shot.tip[0] - 0.4995) < 1e-6);
+  // The tip's point seen along a 60 degree cue lies 0.75 R up the ball seen level.
+  assert.ok(Math.abs(shot.tip[1] - 0.75) < 2e-3);
+  const level = new AimController();
+  level.tip = [0.5, 0];
+  const [flat] = pullAndRelease(level, ctx(), MAX_PULL);
+  assert.equal('elevation' in flat, false, 'a level shot is the message it always was');
+  assert.deepEqual(flat.tip, [0.5, 0]);
+});

@@ -5,8 +5,8 @@ import { initialState, reduce } from '../js/state.js';
 import { applyInputLimits } from '../js/ui.js';
 import { routeOf } from '../js/routes.js';
 
-const SERVER_LIMITS = { max_speed: 12.0, max_tip: 0.5, max_angle: 10.0, max_name: 24,
-  max_chat: 200, cue_mass_ratio: 30.0 };
+const SERVER_LIMITS = { max_speed: 12.0, max_tip: 0.5, max_elevation: 1.3962634015954636,
+  max_angle: 10.0, max_name: 24, max_chat: 200, cue_mass_ratio: 30.0 };
 
 test('the defaults stand in for exactly the fields the server sends', () => {
   assert.deepEqual(Object.keys(DEFAULT_LIMITS).sort(), Object.keys(SERVER_LIMITS).sort());

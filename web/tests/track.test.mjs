@@ -113,3 +113,40 @@ test('a truncated, foreign or padded message is refused', () => {
   assert.throws(() => decodeMotion(Uint8Array.from([2, ...bytes.slice(1)])));
   assert.throws(() => decodeMotion(Uint8Array.from([...bytes, 0])));
 });
+
+/** docs/protocol.md, `motion` version 2: the cue ball hops 45.0 mm over 0.1 s. */
+const HOP_HEX = `01 02 09 00 00 00 04 00 00 00 a0 86 01 00 01 01 00
+00 ff 03 00 00 ce 18 ce 18 00 00 00 00 d0 86 03 94 0a 00 00 84 07 d0 86 03 94 0a 00 00 83 07
+00 00 00 ff ff b8 0b`;
+
+/** @param {string} text */
+const hexBytes = (text) => Uint8Array.from(text.trim().split(/\s+/), (h) => parseInt(h, 16));
+
+test('version 2 (a ball flies) decodes each knot\'s height, and the pose has z', () => {
+  const m = decodeMotion(hexBytes(HOP_HEX));
+  assert.equal(m.seq, 9);
+  assert.equal(m.shot, 4);
+  const [cue] = m.tracks;
+  assert.deepEqual([...cue.z], [0, 0.045, 0]);
+  assert.deepEqual([...cue.x], [0.635, 0.7, 0.765]);
+  assert.equal(cue.offTable, false);
+  assert.ok(Math.abs((trackAt(cue, 0.025)?.z ?? NaN) - 0.0225) < 1e-12);
+  assert.equal(trackAt(cue, 0.1)?.z, 0);
+  assert.deepEqual(m.sounds, [{ t: 0, kind: 'strike', ids: [0], speed: 3, target: -1 }]);
+});
+
+test('version 1 still decodes, every height 0', () => {
+  const m = decodeMotion(encodeMotion(SHOT));
+  assert.equal(trackAt(m.tracks[0], 0.1)?.z, 0);
+  assert.ok(m.tracks.every((t) => t.offTable === false));
+});
+
+test('version 2: pocket 254 is a ball that flies off the table at its last knot', () => {
+  const bytes = hexBytes(HOP_HEX);
+  bytes[18] = 254;
+  const [cue] = decodeMotion(bytes).tracks;
+  assert.equal(cue.offTable, true);
+  assert.equal(cue.pocket, null);
+  assert.notEqual(trackAt(cue, 0.1), null);
+  assert.equal(trackAt(cue, 0.2), null);
+});

@@ -6,6 +6,9 @@ SPINNING = 1
 SLIDING = 2
 ROLLING = 3
 POCKETED = 4
+AIRBORNE = 5
+# The pocket index of a ball that flew off the table (state POCKETED: out of play).
+OFF_TABLE = -2
 
 # Event kind codes (see results.EVENT_CODES)
 EV_STRIKE = 0
@@ -14,6 +17,8 @@ EV_CUSHION = 2
 EV_JAW = 3
 EV_POCKET = 4
 EV_REST = 5
+EV_LAND = 6
+EV_OFF = 7
 EV_NONE = -1
 
 # PhysicsParams.array() layout
@@ -41,3 +46,12 @@ EPS_SPEED = 1e-9
 EPS_SPIN = 1e-7
 # A tick may resolve at most this many events; beyond it the tick stops early (no overlap).
 MAX_EVENTS_PER_TICK = 5000
+
+# The airborne ball. They are not PhysicsParams fields, so the engine version's digest (and
+# every level shot's version) stays as it was; a change here must bump PHYSICS_REVISION.
+# Ball-slate restitution: Alciatore's physical-properties page (DA-PP) gives 0.5 for the
+# ball-table restitution, the figure behind his jump-shot articles (a cue ball driven into
+# the slate comes back up with about half the speed); not re-checked for this constant.
+E_SLATE = 0.5
+# A bounce slower than this (m/s up: a hop of 0.5 mm) ends the flight: the ball stays down.
+MIN_HOP_SPEED = 0.1

@@ -8,6 +8,8 @@ to rest), so the friction law never changes inside one.
 Sliding: the contact point slips with u = v + w x (-R z); friction -u_s g u/|u| slows it
 and turns the ball, and |u| falls at 7/2 u_s g, so sliding ends after 2|u|/(7 u_s g).
 Rolling: deceleration u_r g along v, w = z x v / R. Spin about z decays at 5 u_sp g / 2R.
+Airborne (a jump or a hop): no friction; the height follows the parabola exactly,
+z + vz t - g t^2 / 2, and the flight ends at the exact landing time (`landing_time`).
 """
 
 import math
@@ -15,8 +17,11 @@ import math
 from numba import njit
 
 from .constants import (
+    AIRBORNE,
+    E_SLATE,
     EPS_SPEED,
     EPS_SPIN,
+    MIN_HOP_SPEED,
     P_G,
     P_RADIUS,
     P_U_ROLL,
@@ -70,9 +75,15 @@ def transition_time(state, vx, vy, wx, wy, p):
     return math.inf
 
 
+@njit(cache=True, inline="always")
+def landing_time(z, vz, g):
+    """Time until a flying ball's height z (moving at vz) is back to 0 under g."""
+    return (vz + math.sqrt(max(vz * vz + 2.0 * g * z, 0.0))) / g
+
+
 # Inlined into the tick loop (see `tick.run_ticks`).
 @njit(cache=True, inline="always")
-def advance(pos, vel, w, st, phase, n, dt, p):
+def advance(pos, vel, w, st, phase, air, n, dt, p):
     """Move every ball on the table forward by dt (no events may occur inside dt)."""
     radius = p[P_RADIUS]
     spin_decel = 2.5 * p[P_U_SPIN] * p[P_G] / radius
@@ -81,6 +92,16 @@ def advance(pos, vel, w, st, phase, n, dt, p):
         if s == POCKETED or s == STATIONARY:
             continue
         vx, vy = vel[i, 0], vel[i, 1]
+        if s == AIRBORNE:
+            pos[i, 0] += vx * dt
+            pos[i, 1] += vy * dt
+            speed = _norm(vx, vy)
+            if speed > 0.0:
+                phase[i] += (w[i, 1] * vx - w[i, 0] * vy) / speed * dt
+            g = p[P_G]
+            air[i, 0] += (air[i, 1] - 0.5 * g * dt) * dt
+            air[i, 1] -= g * dt
+            continue
         if s == SLIDING or s == ROLLING:
             pos[i, 0] += vx * dt
             pos[i, 1] += vy * dt
@@ -158,12 +179,52 @@ def drop_residual_spin(w, st):
 
 
 @njit(cache=True, inline="always")
-def strike_ball(vel, w, st, i, vx, vy, wx, wy, wz, radius):
+def strike_ball(vel, w, st, air, i, vx, vy, wx, wy, wz, down, p):
     """Give ball i a strike's velocity (vx, vy) and spin (wx, wy, wz), and the motion
-    state they make."""
+    state they make; `down` (m/s) is the part driven into the slate by a raised cue, which
+    bounces the ball up (`bounce`). A level strike (down = 0) is only the first part."""
     vel[i, 0] = vx
     vel[i, 1] = vy
     w[i, 0] = wx
     w[i, 1] = wy
     w[i, 2] = wz
-    classify(vel, w, st, i, radius)
+    classify(vel, w, st, i, p[P_RADIUS])
+    if down > 0.0:
+        air[i, 0] = 0.0
+        air[i, 1] = -down
+        bounce(vel, w, st, air, i, p, False)
+
+
+@njit(cache=True, inline="always")
+def bounce(vel, w, st, air, i, p, friction):
+    """Ball i meets the slate moving down at -air[i, 1]: it comes back up at E_SLATE times
+    that speed, or stays down when that is under MIN_HOP_SPEED. With `friction` (a
+    landing) the slate's friction (u_slide, Coulomb, at most what stops the contact's
+    slip: a sphere's contact point answers a horizontal impulse J/m with 7/2 J/m) acts on
+    the slip v + w x (-R z) during the impact; at the strike it does not (the cue and the
+    slate act at once, and TP A.30's strike, pooltool's too, has the velocity and spin
+    leave the cue as they are). Returns the speed of the impact (m/s, down)."""
+    radius = p[P_RADIUS]
+    down = -air[i, 1]
+    if down <= 0.0:
+        return 0.0
+    sx = vel[i, 0] - radius * w[i, 1]
+    sy = vel[i, 1] + radius * w[i, 0]
+    slip = _norm(sx, sy)
+    if friction and slip > 0.0:
+        jf = min(p[P_U_SLIDE] * (1.0 + E_SLATE) * down, slip / 3.5) / slip
+        ax, ay = -jf * sx, -jf * sy
+        vel[i, 0] += ax
+        vel[i, 1] += ay
+        w[i, 0] += 2.5 * ay / radius
+        w[i, 1] += -2.5 * ax / radius
+    up = E_SLATE * down
+    air[i, 0] = 0.0
+    if up < MIN_HOP_SPEED:
+        air[i, 1] = 0.0
+        st[i] = STATIONARY
+        classify(vel, w, st, i, radius)
+    else:
+        air[i, 1] = up
+        st[i] = AIRBORNE
+    return down

@@ -5,6 +5,8 @@ restitution e the exchange is scaled by (1 + e)/2. Friction at the contact (Alci
 TP A-14 model) throws the object ball and passes spin between the balls.
 Cushion and jaw: Han 2005's impulse model with the contact on the cushion nose, above the
 ball's centre (see `rebound`), and a restitution that falls at high speed.
+A flying ball: contacts in three dimensions (`ball_ball_3d`), over a cushion's nose it
+leaves the table (`off_table`), and where it lands it drops into a hole or bounces (`land`).
 """
 
 import math
@@ -12,6 +14,9 @@ import math
 from numba import njit
 
 from .constants import (
+    AIRBORNE,
+    MIN_HOP_SPEED,
+    OFF_TABLE,
     P_CUSHION_NOSE,
     P_E_BALL,
     P_E_CUSHION,
@@ -24,6 +29,7 @@ from .constants import (
     P_U_BALL_B,
     P_U_BALL_C,
     POCKETED,
+    SLIDING,
 )
 from .motion import classify
 from .vector import norm as _norm
@@ -189,3 +195,81 @@ def pocket(pos, vel, w, st, pocket_of, i, k, centers):
     for a in range(3):
         w[i, a] = 0.0
     return speed
+
+
+@njit(cache=True, inline="always")
+def flying(air, i):
+    """Is ball i off the bed (above it, or leaving it upwards)?"""
+    return air[i, 0] > 0.0 or air[i, 1] > 0.0
+
+
+@njit(cache=True)
+def ball_ball_3d(pos, vel, w, st, air, i, j, p):
+    """Collide balls i and j when one of them flies: one impulse along the line of centres
+    in three dimensions that sends them apart at e times their approach speed. A ball on
+    the bed pushed down by it is held by the slate (it takes only the horizontal part, so
+    the impulse is solved with that ball's vertical motion locked); one pushed up is
+    lifted. No friction at this contact. Returns the approach speed (0 when not
+    approaching)."""
+    dx = pos[j, 0] - pos[i, 0]
+    dy = pos[j, 1] - pos[i, 1]
+    dz = air[j, 0] - air[i, 0]
+    d2 = dx * dx + dy * dy + dz * dz
+    rel = (vel[i, 0] - vel[j, 0]) * dx + (vel[i, 1] - vel[j, 1]) * dy + (air[i, 1] - air[j, 1]) * dz
+    if rel <= 0.0 or d2 == 0.0:
+        return 0.0
+    d = math.sqrt(d2)
+    nx, ny, nz = dx / d, dy / d, dz / d  # from i to j
+    vn = rel / d
+    flat = nx * nx + ny * ny
+    # i takes -J n, j takes +J n: a ball on the bed pushed down keeps no vertical part.
+    lift_i = 0.0 if (air[i, 0] <= 0.0 and nz > 0.0) else 1.0
+    lift_j = 0.0 if (air[j, 0] <= 0.0 and nz < 0.0) else 1.0
+    jn = (1.0 + p[P_E_BALL]) * vn / (2.0 * flat + (lift_i + lift_j) * nz * nz)
+    vel[i, 0] -= jn * nx
+    vel[i, 1] -= jn * ny
+    air[i, 1] -= lift_i * jn * nz
+    vel[j, 0] += jn * nx
+    vel[j, 1] += jn * ny
+    air[j, 1] += lift_j * jn * nz
+    settle_height(vel, w, st, air, i, p[P_RADIUS])
+    settle_height(vel, w, st, air, j, p[P_RADIUS])
+    return vn
+
+
+@njit(cache=True, inline="always")
+def settle_height(vel, w, st, air, i, radius):
+    """After a contact: a ball on the bed pushed down stays on it (the slate takes the
+    push), one lifted by less than MIN_HOP_SPEED too; anything else flies."""
+    if air[i, 0] <= 0.0 and air[i, 1] < MIN_HOP_SPEED:
+        air[i, 0] = 0.0
+        air[i, 1] = 0.0
+        if st[i] == AIRBORNE:
+            st[i] = SLIDING
+        classify(vel, w, st, i, radius)
+    else:
+        st[i] = AIRBORNE
+
+
+@njit(cache=True)
+def off_table(vel, w, st, air, pocket_of, i):
+    """Ball i flies over a cushion's nose: it is out of play where it crossed (state
+    POCKETED, pocket OFF_TABLE). Returns its speed."""
+    speed = _norm(vel[i, 0], vel[i, 1])
+    st[i] = POCKETED
+    pocket_of[i] = OFF_TABLE
+    for a in range(2):
+        vel[i, a] = 0.0
+        air[i, a] = 0.0
+    for a in range(3):
+        w[i, a] = 0.0
+    return speed
+
+
+@njit(cache=True, inline="always")
+def over_hole(pos, i, pockets):
+    """The pocket whose hole ball i's centre is over, or -1."""
+    for k in range(pockets.shape[0]):
+        if _norm(pos[i, 0] - pockets[k, 0], pos[i, 1] - pockets[k, 1]) < pockets[k, 2]:
+            return k
+    return -1

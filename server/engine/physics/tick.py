@@ -13,15 +13,20 @@ from numba import njit
 
 from .borrow import borrowed
 from .constants import (
+    AIRBORNE,
     EPS_SPIN,
     EV_BALL,
     EV_CUSHION,
     EV_JAW,
+    EV_LAND,
     EV_NONE,
+    EV_OFF,
     EV_POCKET,
     EV_REST,
     MAX_EVENTS_PER_TICK,
     P_CELS,
+    P_CUSHION_NOSE,
+    P_G,
     P_RADIUS,
     POCKETED,
     ROLLING,
@@ -32,12 +37,15 @@ from .constants import (
 from .detect import earliest_event
 from .motion import (
     advance,
+    bounce,
     drop_residual_spin,
     finish_transition,
+    landing_time,
     strike_ball,
     transition_time,
 )
-from .resolve import ball_ball, cushion, jaw, pocket
+from .resolve import ball_ball, ball_ball_3d, cushion, jaw, off_table, over_hole, pocket
+from .vector import norm as _norm
 
 
 @njit(cache=True, inline="always")
@@ -65,6 +73,7 @@ def run_tick(
     st,
     phase,
     pocket_of,
+    air,
     cush,
     jaws,
     pockets,
@@ -84,7 +93,7 @@ def run_tick(
     and stopped early (the balls are left where they are: no overlap).
     """
     n_ev, stalls, _ = run_ticks(
-        pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width, p,
+        pos, vel, w, st, phase, pocket_of, air, cush, jaws, pockets, centers, length, width, p,
         dt, t0, 0, 1, False, events, n_ev, 0, None, None, None,
     )  # fmt: skip
     return n_ev, stalls > 0
@@ -98,6 +107,7 @@ def run_ticks(
     st,
     phase,
     pocket_of,
+    air,
     cush,
     jaws,
     pockets,
@@ -132,10 +142,12 @@ def run_ticks(
     # Ownerless views: the helpers below are handed these on every sub-step (`borrow`).
     pos, vel, w = borrowed(pos), borrowed(vel), borrowed(w)
     st, phase, pocket_of = borrowed(st), borrowed(phase), borrowed(pocket_of)
+    air = borrowed(air)
     cush, jaws, pockets = borrowed(cush), borrowed(jaws), borrowed(pockets)
     centers, p, events = borrowed(centers), borrowed(p), borrowed(events)
     n = pos.shape[0]
     radius = p[P_RADIUS]
+    nose_height = 2.0 * radius * p[P_CUSHION_NOSE]  # a ball whose bottom is higher clears it
     stalls = 0
     while ticks < last_tick and (not until_rest or any_moving(st)):
         if events.shape[0] - n_ev < free_rows:
@@ -155,23 +167,41 @@ def run_ticks(
                     tt = transition_time(st[i], vel[i, 0], vel[i, 1], w[i, 0], w[i, 1], p)
                     if tt < horizon:
                         horizon = tt
+                elif st[i] == AIRBORNE:
+                    tt = landing_time(air[i, 0], air[i, 1], p[P_G])
+                    if tt < horizon:
+                        horizon = tt
             t, kind, a, b = earliest_event(
-                pos, vel, st, n, horizon, cush, jaws, pockets, length, width, p
+                pos, vel, st, air, n, horizon, cush, jaws, pockets, length, width, p
             )
             if kind != EV_NONE:
-                advance(pos, vel, w, st, phase, n, t, p)
+                advance(pos, vel, w, st, phase, air, n, t, p)
                 elapsed += t
                 now = t0 + elapsed
                 if kind == EV_BALL:
-                    speed = ball_ball(pos, vel, w, st, a, b, p)
+                    if st[a] == AIRBORNE or st[b] == AIRBORNE:
+                        speed = ball_ball_3d(pos, vel, w, st, air, a, b, p)
+                    else:
+                        speed = ball_ball(pos, vel, w, st, a, b, p)
                     if speed > 0.0:
                         n_ev = _record(events, n_ev, now, EV_BALL, a, b, speed, -1)
+                elif st[a] == AIRBORNE and air[a, 0] >= nose_height:
+                    # Over the nose of a cushion or a pocket's facing: off the table.
+                    target = b if kind == EV_CUSHION or b < jaws.shape[0] else b - jaws.shape[0]
+                    speed = off_table(vel, w, st, air, pocket_of, a)
+                    n_ev = _record(events, n_ev, now, EV_OFF, a, -1, speed, target)
                 elif kind == EV_CUSHION:
+                    was_flying = st[a] == AIRBORNE
                     speed = cushion(vel, w, st, a, b, cush, p)
+                    if was_flying:
+                        st[a] = AIRBORNE
                     if speed > 0.0:
                         n_ev = _record(events, n_ev, now, EV_CUSHION, a, -1, speed, b)
                 elif kind == EV_JAW:
+                    was_flying = st[a] == AIRBORNE
                     speed = jaw(pos, vel, w, st, a, b, jaws, p)
+                    if was_flying:
+                        st[a] = AIRBORNE
                     if speed > 0.0:
                         target = b if b < jaws.shape[0] else b - jaws.shape[0]
                         n_ev = _record(events, n_ev, now, EV_JAW, a, -1, speed, target)
@@ -190,7 +220,7 @@ def run_ticks(
                     break
                 continue
             # No collision before the horizon: move there and finish any state change.
-            advance(pos, vel, w, st, phase, n, horizon, p)
+            advance(pos, vel, w, st, phase, air, n, horizon, p)
             if horizon >= remaining:
                 elapsed = dt
             else:
@@ -199,6 +229,13 @@ def run_ticks(
             # After advancing exactly to a transition, round-off can leave a sliver of slip or
             # speed: a ball within a nanosecond of its transition has reached it.
             for i in range(n):
+                if st[i] == AIRBORNE:
+                    if landing_time(air[i, 0], air[i, 1], p[P_G]) <= 1e-9:
+                        n_ev = _land(
+                            pos, vel, w, st, air, pocket_of, i, pockets, centers, length,
+                            width, p, now, events, n_ev,
+                        )  # fmt: skip
+                    continue
                 if st[i] != SLIDING and st[i] != ROLLING:
                     continue
                 tt = transition_time(st[i], vel[i, 0], vel[i, 1], w[i, 0], w[i, 1], p)
@@ -213,6 +250,33 @@ def run_ticks(
                 frame_on[ticks, i] = st[i] != POCKETED
         ticks += 1
     return n_ev, stalls, ticks
+
+
+@njit(cache=True, inline="always")
+def _land(
+    pos, vel, w, st, air, pocket_of, i, pockets, centers, length, width, p, now, events, n_ev
+):
+    """Ball i comes down: into the hole it is over, off the table when it is past the
+    cushions and no pocket's shelf (within 2R of the hole) is under it, else a bounce on
+    the bed (`bounce`: up again, or down for good). Records a `pocket`, an `off_table` or
+    a `land` event."""
+    air[i, 0] = 0.0
+    k = over_hole(pos, i, pockets)
+    if k >= 0:
+        air[i, 1] = 0.0
+        speed = pocket(pos, vel, w, st, pocket_of, i, k, centers)
+        return _record(events, n_ev, now, EV_POCKET, i, -1, speed, k)
+    x, y = pos[i, 0], pos[i, 1]
+    if not (0.0 <= x <= length and 0.0 <= y <= width):
+        shelf = False
+        for k in range(pockets.shape[0]):
+            reach = pockets[k, 2] + 2.0 * p[P_RADIUS]
+            shelf = shelf or _norm(x - pockets[k, 0], y - pockets[k, 1]) < reach
+        if not shelf:
+            speed = off_table(vel, w, st, air, pocket_of, i)
+            return _record(events, n_ev, now, EV_OFF, i, -1, speed, -1)
+    speed = bounce(vel, w, st, air, i, p, True)
+    return _record(events, n_ev, now, EV_LAND, i, -1, speed, -1)
 
 
 @njit(cache=True)
@@ -253,7 +317,7 @@ def _halt(vel, w, st, i, now, events, n_ev):
 @njit(cache=True, inline="always")
 def any_moving(st):
     for s in st:
-        if s == SLIDING or s == ROLLING:
+        if s == SLIDING or s == ROLLING or s == AIRBORNE:
             return True
     return False
 
@@ -275,6 +339,7 @@ def run_to_rest_kernel(
     st,
     phase,
     pocket_of,
+    air,
     cush,
     jaws,
     pockets,
@@ -319,13 +384,13 @@ def run_to_rest_kernel(
         # their absence (None) as two versions of run_ticks, which cannot share a call.
         if frames:
             n_ev, more_stalls, ticks = run_ticks(
-                pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width,
+                pos, vel, w, st, phase, pocket_of, air, cush, jaws, pockets, centers, length, width,
                 p, dt, 0.0, ticks, max_ticks, True, events, n_ev, MAX_EVENTS_PER_TICK + 65,
                 frame_pos, frame_cels, frame_on,
             )  # fmt: skip
         else:
             n_ev, more_stalls, ticks = run_ticks(
-                pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width,
+                pos, vel, w, st, phase, pocket_of, air, cush, jaws, pockets, centers, length, width,
                 p, dt, 0.0, ticks, max_ticks, True, events, n_ev, MAX_EVENTS_PER_TICK + 65,
                 None, None, None,
             )  # fmt: skip
@@ -349,12 +414,14 @@ def settle_kernel(
     st,
     phase,
     pocket_of,
+    air,
     cue,
     vx,
     vy,
     wx,
     wy,
     wz,
+    down,
     cush,
     jaws,
     pockets,
@@ -368,23 +435,25 @@ def settle_kernel(
 ):
     """A shot to rest without frames, from strike to final table, in one compiled call:
     copies of the balls' arrays (the caller's stay as they are), the cue ball given the
-    strike's velocity (vx, vy) and spin (wx, wy, wz), the ticks, and the spin of a ball that
-    no longer translates dropped. The same steps in Python (copies, strike, spin) cost about
-    15 us a shot, some 5 % of a search's short shot, and a search settles thousands a turn.
-    Returns (pos, vel, w, st, phase, pocket_of, events, stalls, ticks)."""
+    strike's velocity (vx, vy), spin (wx, wy, wz) and speed `down` into the slate, the
+    ticks, and the spin of a ball that no longer translates dropped. The same steps in
+    Python (copies, strike, spin) cost about 15 us a shot, some 5 % of a search's short
+    shot, and a search settles thousands a turn.
+    Returns (pos, vel, w, st, phase, pocket_of, air, events, stalls, ticks)."""
     pos = pos.copy()
     vel = vel.copy()
     w = w.copy()
     st = st.copy()
     phase = phase.copy()
     pocket_of = pocket_of.copy()
-    strike_ball(vel, w, st, cue, vx, vy, wx, wy, wz, p[P_RADIUS])
+    air = air.copy()
+    strike_ball(vel, w, st, air, cue, vx, vy, wx, wy, wz, down, p)
     _, _, _, events, stalls, ticks = run_to_rest_kernel(
-        pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width, p,
+        pos, vel, w, st, phase, pocket_of, air, cush, jaws, pockets, centers, length, width, p,
         dt, max_ticks, event_capacity, False,
     )  # fmt: skip
     drop_residual_spin(w, st)
-    return pos, vel, w, st, phase, pocket_of, events, stalls, ticks
+    return pos, vel, w, st, phase, pocket_of, air, events, stalls, ticks
 
 
 @njit(cache=True, nogil=True)

@@ -35,35 +35,37 @@ EVENT_ROWS = 4 * MAX_EVENTS_PER_TICK  # rows one tick may write (see `trace_tick
 
 @njit(cache=True, nogil=True)
 def traced_run_kernel(
-    pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width, p, dt,
-    max_ticks, tol, tol_phase,
+    pos, vel, w, st, phase, pocket_of, air, cush, jaws, pockets, centers, length, width, p,
+    dt, max_ticks, tol, tol_phase,
 ):  # fmt: skip
     """The shot run to rest once, traced and thinned, in one compiled call. The table is
     advanced in place, as `run_to_rest_kernel` advances it.
 
     Returns (times (S,), positions (S, N, 2), phases (S, N), on-table (S, N), knots,
-    offsets (see `thin`), ticks, and what `run_to_rest_kernel` returns for the same shot,
+    offsets (see `thin`), heights (S, N), ticks, and what `run_to_rest_kernel` returns
+    for the same shot,
     value for value: (frame positions, frame cels, frame on-table, event rows, stalled
     ticks, ticks))."""
-    t, positions, phases, on, forced, ticks, engine = trace_ticks(
-        pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width, p, dt,
-        max_ticks,
+    t, positions, phases, on, forced, heights, ticks, engine = trace_ticks(
+        pos, vel, w, st, phase, pocket_of, air, cush, jaws, pockets, centers, length, width, p,
+        dt, max_ticks,
     )  # fmt: skip
-    knots, offsets = thin(t, positions, phases, on, forced, tol, tol_phase, MAX_SPAN)
-    return t, positions, phases, on, knots, offsets, ticks, engine
+    knots, offsets = thin(t, positions, phases, heights, on, forced, tol, tol_phase, MAX_SPAN)
+    return t, positions, phases, on, knots, offsets, heights, ticks, engine
 
 
 @njit(cache=True, nogil=True)
 def trace_ticks(
-    pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width, p, dt,
-    max_ticks,
+    pos, vel, w, st, phase, pocket_of, air, cush, jaws, pockets, centers, length, width, p,
+    dt, max_ticks,
 ):  # fmt: skip
     """Samples of the whole shot: t = 0, every event time (replayed), every tick's end; and
     what the engine's `run_to_rest_kernel` returns for the same shot, value for value (the
     same `run_tick` calls: the table is advanced to rest in place, as the engine does).
 
     Returns (times (S,), positions (S, N, 2), phases (S, N), on-table (S, N), forced
-    (S, N): the ball takes part in an event at that sample, ticks, and the engine's
+    (S, N): the ball takes part in an event at that sample, heights (S, N), ticks, and
+    the engine's
     (frame positions, frame cels, frame on-table, event rows, stalled ticks, ticks))."""
     n = pos.shape[0]
     frame_cap = 256
@@ -77,6 +79,7 @@ def trace_ticks(
     s_t = np.empty(cap)
     s_pos = np.empty((cap, n, 2))
     s_phase = np.empty((cap, n))
+    s_z = np.zeros((cap, n))
     s_on = np.empty((cap, n), dtype=np.bool_)
     s_forced = np.zeros((cap, n), dtype=np.bool_)
     # A tick stops after MAX_EVENTS_PER_TICK contacts, but the `rest` events between them
@@ -86,13 +89,14 @@ def trace_ticks(
     # Snapshots of the table at each tick's start and for the replays, reused (a shot has
     # hundreds of ticks).
     pos0, vel0, w0, st0 = np.empty_like(pos), np.empty_like(vel), np.empty_like(w), st.copy()
-    phase0, pocket0 = np.empty_like(phase), pocket_of.copy()
+    phase0, pocket0, air0 = np.empty_like(phase), pocket_of.copy(), air.copy()
     pos1, vel1, w1, st1 = np.empty_like(pos), np.empty_like(vel), np.empty_like(w), st.copy()
-    phase1, pocket1 = np.empty_like(phase), pocket_of.copy()
+    phase1, pocket1, air1 = np.empty_like(phase), pocket_of.copy(), air.copy()
     k = 0
     s_t[0] = 0.0
     s_pos[0] = pos
     s_phase[0] = phase
+    s_z[0] = air[:, 0]
     for i in range(n):
         s_on[0, i] = st[i] != POCKETED
     k = 1
@@ -105,9 +109,10 @@ def trace_ticks(
         st0[:] = st
         phase0[:] = phase
         pocket0[:] = pocket_of
+        air0[:] = air
         n_ev, stalled = run_tick(
-            pos, vel, w, st, phase, pocket_of, cush, jaws, pockets, centers, length, width, p,
-            dt, t0, events, 0,
+            pos, vel, w, st, phase, pocket_of, air, cush, jaws, pockets, centers, length,
+            width, p, dt, t0, events, 0,
         )  # fmt: skip
         if stalled:
             stalls += 1
@@ -129,6 +134,7 @@ def trace_ticks(
             s_t = grown(s_t, cap)
             s_pos = grown(s_pos, cap)
             s_phase = grown(s_phase, cap)
+            s_z = grown(s_z, cap)
             s_on = grown(s_on, cap)
             s_forced = grown(s_forced, cap)
             s_forced[k:] = False
@@ -151,12 +157,14 @@ def trace_ticks(
                     st1[:] = st0
                     phase1[:] = phase0
                     pocket1[:] = pocket0
+                    air1[:] = air0
                     run_tick(
-                        pos1, vel1, w1, st1, phase1, pocket1, cush, jaws, pockets, centers,
-                        length, width, p, span, t0, scratch, 0,
+                        pos1, vel1, w1, st1, phase1, pocket1, air1, cush, jaws, pockets,
+                        centers, length, width, p, span, t0, scratch, 0,
                     )  # fmt: skip
                     s_pos[k] = pos1
                     s_phase[k] = phase1
+                    s_z[k] = air1[:, 0]
                     s_t[k] = time  # (the balls BEFORE earlier: the same within 1e-8 m)
                     for i in range(n):
                         # On the table up to its pocket event (the replay stops short).
@@ -164,6 +172,7 @@ def trace_ticks(
                 else:
                     s_pos[k] = pos0
                     s_phase[k] = phase0
+                    s_z[k] = air0[:, 0]
                     s_t[k] = t0
                     for i in range(n):
                         s_on[k, i] = st0[i] != POCKETED
@@ -182,6 +191,7 @@ def trace_ticks(
         s_t[k] = t0 + dt
         s_pos[k] = pos
         s_phase[k] = phase
+        s_z[k] = air[:, 0]
         s_forced[k] = False
         for i in range(n):
             s_on[k, i] = st[i] != POCKETED
@@ -201,21 +211,24 @@ def trace_ticks(
         s_phase[:k].copy(),
         s_on[:k].copy(),
         s_forced[:k].copy(),
+        s_z[:k].copy(),
         ticks,
         engine,
     )
 
 
 @njit(cache=True, inline="always")
-def _fits(t, pos, phase, b, a, j, tol, tol_phase):
+def _fits(t, pos, phase, z, b, a, j, tol, tol_phase):
     """Does the straight line from sample a to sample j pass within tol of every sample
-    between them (ball b)?"""
+    between them (ball b), its height too?"""
     span = t[j] - t[a]
     for i in range(a + 1, j):
         f = (t[i] - t[a]) / span if span > 0.0 else 0.0
         x = pos[a, b, 0] + (pos[j, b, 0] - pos[a, b, 0]) * f
         y = pos[a, b, 1] + (pos[j, b, 1] - pos[a, b, 1]) * f
         if (x - pos[i, b, 0]) ** 2 + (y - pos[i, b, 1]) ** 2 > tol * tol:
+            return False
+        if abs(z[a, b] + (z[j, b] - z[a, b]) * f - z[i, b]) > tol:
             return False
         ph = phase[a, b] + (phase[j, b] - phase[a, b]) * f
         if abs(ph - phase[i, b]) > tol_phase:
@@ -224,7 +237,7 @@ def _fits(t, pos, phase, b, a, j, tol, tol_phase):
 
 
 @njit(cache=True, nogil=True)
-def thin(t, pos, phase, on, forced, tol, tol_phase, max_span):
+def thin(t, pos, phase, z, on, forced, tol, tol_phase, max_span):
     """Knot sample indices per ball: (knots, offsets) with ball b's in
     knots[offsets[b]:offsets[b + 1]]. A ball's track ends at its last sample on the table
     (its pocket) or where it last moved (it rests there after)."""
@@ -241,15 +254,15 @@ def thin(t, pos, phase, on, forced, tol, tol_phase, max_span):
             offsets[b + 1] = count
             continue
         if end == s - 1:  # never pocketed: it rests where it last moved
-            while end > 0 and _same(pos, phase, b, end - 1, end):
+            while end > 0 and _same(pos, phase, z, b, end - 1, end):
                 end -= 1
         knots[count] = 0
         count += 1
         a = 0
         while a < end:
             j = a + 1
-            if _same(pos, phase, b, a, j):
-                while j < end and _same(pos, phase, b, a, j + 1):
+            if _same(pos, phase, z, b, a, j):
+                while j < end and _same(pos, phase, z, b, a, j + 1):
                     j += 1
                 knots[count] = j
                 count += 1
@@ -264,14 +277,14 @@ def thin(t, pos, phase, on, forced, tol, tol_phase, max_span):
             fails = limit + 1
             while j < limit:
                 probe = min(j + step, limit)
-                if not _fits(t, pos, phase, b, a, probe, tol, tol_phase):
+                if not _fits(t, pos, phase, z, b, a, probe, tol, tol_phase):
                     fails = probe
                     break
                 j = probe
                 step *= 2
             while fails - j > 1 and j < limit:
                 mid = (j + fails) // 2
-                if _fits(t, pos, phase, b, a, mid, tol, tol_phase):
+                if _fits(t, pos, phase, z, b, a, mid, tol, tol_phase):
                     j = mid
                 else:
                     fails = mid
@@ -283,7 +296,10 @@ def thin(t, pos, phase, on, forced, tol, tol_phase, max_span):
 
 
 @njit(cache=True, inline="always")
-def _same(pos, phase, b, i, j):
+def _same(pos, phase, z, b, i, j):
     return (
-        pos[i, b, 0] == pos[j, b, 0] and pos[i, b, 1] == pos[j, b, 1] and phase[i, b] == phase[j, b]
+        pos[i, b, 0] == pos[j, b, 0]
+        and pos[i, b, 1] == pos[j, b, 1]
+        and phase[i, b] == phase[j, b]
+        and z[i, b] == z[j, b]
     )

@@ -13,7 +13,7 @@ import { RoomSocket, memory } from '../../net.js';
 import {
   initialState, setConnection, isMyTurn, clockRemaining, playerName,
 } from '../../state.js';
-import { clampTip } from '../../geometry.js';
+import { clampTip, tipAlongCue } from '../../geometry.js';
 import { attachPointer, AimController } from '../../input.js';
 import {
   $, $input, applyInputLimits, renderHud, renderChat, renderDecision, renderAway, setText,
@@ -87,6 +87,10 @@ export class LiveTable {
       this.aim.tip = tip;
       this.aim.dirty = true;
     });
+    this.elevation = elevationControl((radians) => {
+      this.aim.elevation = Math.min(radians, this.limits.max_elevation);
+      this.aim.dirty = true;
+    });
     this.socket = new RoomSocket(roomId, () => this.seatToken(), {
       onMessage: (msg) => this.receive(msg),
       onStatus: (status, detail) => {
@@ -130,7 +134,11 @@ export class LiveTable {
     }
     this.aim.reset();
     this.aim.angle = plan.angle;
-    this.aim.tip = clampTip(plan.tip[0], plan.tip[1], this.limits.max_tip);
+    // A jump's tip comes as the server names it: the spin widget shows it along the cue.
+    const elevation = plan.elevation ?? 0;
+    const tip = tipAlongCue(plan.tip[0], plan.tip[1], elevation);
+    this.aim.tip = clampTip(tip[0], tip[1], this.limits.max_tip);
+    this.elevation.set(Math.round((elevation * 180) / Math.PI));
     this.aim.power = powerFromSpeed(plan.speed, this.limits.max_speed);
     this.aim.dirty = true;
     this.triedPower = this.aim.power;
@@ -231,7 +239,10 @@ export class LiveTable {
     this.remoteCue = null;
     // The last shot's words go stale as the next one is played.
     this.state = { ...this.state, outcome: '' };
-    if (!this.keepSpin.checked) this.aim.tip = [0, 0];
+    if (!this.keepSpin.checked) {
+      this.aim.tip = [0, 0];
+      this.elevation.set(0);
+    }
   }
 
   /**
@@ -500,6 +511,28 @@ export class LiveTable {
         || now - state.aim.at > REMOTE_AIM_TTL || state.phase !== 'aiming') return this.aim.tip;
     return state.aim.tip;
   }
+}
+
+/**
+ * The elevation slider (keyboard: arrows, Home/End; touch: drag), in degrees on screen
+ * and radians to `onPick`; `set` moves it back (a shot without "keep spin").
+ * @param {(radians: number) => void} onPick
+ */
+function elevationControl(onPick) {
+  const input = $input('elevation');
+  const out = $('elevation-out');
+  const show = () => {
+    setText(out, `${input.value}°`);
+    onPick((Number(input.value) * Math.PI) / 180);
+  };
+  input.addEventListener('input', show);
+  return {
+    /** @param {number} degrees */
+    set(degrees) {
+      input.value = String(degrees);
+      show();
+    },
+  };
 }
 
 /** The "keep spin" box: remembered; unticked, the spin goes back to centre after a shot. */
