@@ -10,9 +10,15 @@ from __future__ import annotations
 from .eight_ball import EightBallRules
 from .nine_ball import NineBallRules
 from .practice import PracticeRules
+from .snooker import SnookerRules
 from .strategy import GameRules
 
-STRATEGIES: tuple[GameRules, ...] = (EightBallRules(), NineBallRules(), PracticeRules())
+STRATEGIES: tuple[GameRules, ...] = (
+    EightBallRules(),
+    NineBallRules(),
+    PracticeRules(),
+    SnookerRules(),
+)
 RULES: dict[str, GameRules] = {rules.kind: rules for rules in STRATEGIES}
 GAME_KINDS = tuple(RULES)
 

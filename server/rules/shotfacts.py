@@ -6,7 +6,7 @@ and no rule below acts on one.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from server.engine import CUE, BallSet, EventKind, MotionState, Settled, ShotResult
 from server.engine.results import EVENT_CODES
@@ -29,6 +29,8 @@ class ShotFacts:
     pockets: pocket index (into `Table.pockets`) of each dropped ball, cue ball included.
     scratch: the cue ball dropped.
     balls_to_rail: distinct object balls that reached a cushion (counts for a legal break).
+    final: the table at rest after the shot, before the rules re-spot anything (not a
+    fact compared: the facts of a settled and a simulated shot are equal).
     """
 
     first_contact: int | None
@@ -37,6 +39,7 @@ class ShotFacts:
     pockets: dict[int, int]
     scratch: bool
     balls_to_rail: frozenset[int]
+    final: BallSet | None = field(default=None, compare=False, repr=False)
 
     @property
     def any_pocketed(self) -> bool:
@@ -85,4 +88,5 @@ def shot_facts(before: BallSet, result: ShotResult | Settled) -> ShotFacts:
         pockets=pockets,
         scratch=CUE in dropped,
         balls_to_rail=frozenset(to_rail),
+        final=final,
     )
