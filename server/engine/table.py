@@ -19,9 +19,10 @@ import dataclasses
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, fields
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import numpy as np
+from pydantic import Field
 
 from .styles import SNOOKER, Arc, PocketCut, TableStyle
 
@@ -126,7 +127,8 @@ class Table:
     ball_radius: float = BALL_RADIUS
     corner_mouth: float = CORNER_MOUTH
     side_mouth: float = SIDE_MOUTH
-    style: str = "pool"
+    # Not stored when "pool", so a pool table's stored form is what it always was.
+    style: Annotated[str, Field(exclude_if=lambda style: style == "pool")] = "pool"
     cushions: tuple[Cushion, ...] = field(init=False, repr=False)
     pockets: tuple[Pocket, ...] = field(init=False, repr=False)
 
@@ -178,15 +180,10 @@ class Table:
 
     @classmethod
     def __get_pydantic_core_schema__(cls, source: Any, handler: GetCoreSchemaHandler) -> CoreSchema:
-        """The codec's schema for the fields, taking the older list form as well, and
-        leaving out a pool table's style."""
+        """The codec's schema for the fields, taking the older list form as well."""
         from pydantic_core import core_schema
 
-        schema = core_schema.no_info_before_validator_function(_fields_by_name, handler(source))
-        schema["serialization"] = core_schema.wrap_serializer_function_ser_schema(
-            _without_pool_style
-        )
-        return schema
+        return core_schema.no_info_before_validator_function(_fields_by_name, handler(source))
 
     def __post_init__(self) -> None:
         cushions, pockets = _build_geometry(
@@ -328,14 +325,6 @@ def _fields_by_name(value: object) -> object:
             raise ValueError(f"a table's field list has 2 to {len(names)} numbers")
         return dict(zip(names, value, strict=False))
     return value
-
-
-def _without_pool_style(table: Table, serialise: Any) -> Any:
-    """A table's stored mapping without `style` when it is "pool" (as stored before)."""
-    data = serialise(table)
-    if isinstance(data, dict) and data.get("style") == POOL.name:
-        del data["style"]
-    return data
 
 
 def _build_geometry(
