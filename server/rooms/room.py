@@ -30,6 +30,7 @@ from server.protocol.outbound import (
     StateMessage,
 )
 from server.rules import GAME_KINDS, Match, Outcome, RulesError
+from server.rules.kinds import rules_for
 
 from .errors import ActionError
 from .tokens import hash_token, new_token, token_matches
@@ -248,7 +249,7 @@ class Room:
         return _table_json(self._table())
 
     def _table(self) -> Table:
-        return self.match.game.table if self.match else Table.pool("9ft")
+        return self.match.game.table if self.match else rules_for(self.game).table()
 
     def room_info(self) -> RoomInfo:
         return RoomInfo(
@@ -380,6 +381,11 @@ class Room:
         match, seat = self._require_player(seat)
         with _rules():
             match.game.call_pocket(seat, pocket)
+
+    def nominate(self, seat: int | None, ball: int) -> None:
+        match, seat = self._require_player(seat)
+        with _rules():
+            match.game.nominate(seat, ball)
 
     def decide(self, seat: int | None, option: str, game: int | None = None) -> None:
         match, seat = self._require_player(seat)
