@@ -21,7 +21,6 @@ from server.engine.results import Event
 from server.rules.position import Position
 from server.rules.ruling import Ruling
 from server.rules.shotfacts import ShotFacts, shot_facts
-from server.rules.spotting import respot
 from server.rules.strategy import GameRules
 
 from .aiming import aim_carom, aim_for_throw, aimed, clamp_shot, perturb, pocket_window
@@ -207,6 +206,8 @@ class Search:
             groups=groups,
             called_pocket=None,
             push_out_declared=False,
+            score=ruling.score if ruling.score is not None else pos.score,
+            balls=final,
         )
 
     def outcome(
@@ -233,7 +234,7 @@ class Search:
         """The rules' ruling on a simulated shot and the table after it (balls re-spotted)."""
         ruling = self.rules.judge(pos, facts)
         if ruling.spot:
-            final = respot(self.table, final, ruling.spot)
+            final = self.rules.respot(self.table, final, ruling.spot)
         return ruling, final
 
     def _made(self, ruling: Ruling, pocketed: tuple[int, ...]) -> bool:
