@@ -102,7 +102,9 @@ function setBalls(el, ids) {
 }
 
 /** @type {Record<string, string>} */
-const GAME_NAMES = { eight_ball: '8-ball', nine_ball: '9-ball', practice: 'Practice' };
+const GAME_NAMES = {
+  eight_ball: '8-ball', nine_ball: '9-ball', practice: 'Practice', snooker: 'Snooker',
+};
 
 /**
  * Fill the lobby's room list.
@@ -414,7 +416,8 @@ function renderRematch(state) {
  */
 function renderWaysOn(state) {
   const ended = state.phase === 'over' || Boolean(state.room?.abandoned);
-  const game = state.room?.game === 'nine_ball' ? 'nine_ball' : 'eight_ball';
+  const ranked = ['nine_ball', 'snooker'];
+  const game = ranked.includes(state.room?.game ?? '') ? state.room?.game : 'eight_ball';
   const again = /** @type {HTMLAnchorElement} */ ($('new-opponent'));
   const href = `/?playnow=${game}`;
   if (again.getAttribute('href') !== href) again.setAttribute('href', href);

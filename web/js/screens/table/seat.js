@@ -9,7 +9,9 @@ import { $, $input } from '../../ui.js';
 import { bindNameField, profileName, settleName } from '../../identity.js';
 
 /** @type {Record<string, string>} */
-const GAME_NAMES = { eight_ball: '8-ball', nine_ball: '9-ball', practice: 'Practice' };
+const GAME_NAMES = {
+  eight_ball: '8-ball', nine_ball: '9-ball', practice: 'Practice', snooker: 'Snooker',
+};
 
 /**
  * @param {string} roomId
