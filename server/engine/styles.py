@@ -48,13 +48,37 @@ class Arc:
 
 
 @dataclass(frozen=True)
+class Spot:
+    """A named spot on the long middle line, or `across` m beside it (+y): at `fraction`
+    of the length from the head cushion, or `from_head` m from it, or `from_foot` m from
+    the foot (top) cushion; the first given counts."""
+
+    name: str
+    fraction: float | None = None
+    from_head: float | None = None
+    from_foot: float | None = None
+    across: float = 0.0
+
+    def at(self, length: float, width: float) -> tuple[float, float]:
+        if self.fraction is not None:
+            x = self.fraction * length
+        elif self.from_head is not None:
+            x = self.from_head
+        else:
+            x = length - (self.from_foot or 0.0)
+        return (x, width / 2 + self.across)
+
+
+POOL_SPOTS = (Spot("head", fraction=0.25), Spot("foot", fraction=0.75))
+
+
+@dataclass(frozen=True)
 class TableStyle:
     """How one kind of table is cut and marked.
 
     corner / side: its pockets. ball_mass: kg. baulk_line: distance of the line across the
     table from the head (baulk) cushion in m, or None for the pool head string (a quarter
-    of the length). d_radius: the D's radius (m), 0 without one. black_from_top: the black
-    spot's distance from the top cushion (snooker).
+    of the length). d_radius: the D's radius (m), 0 without one. spots: the named spots.
     """
 
     name: str
@@ -63,27 +87,15 @@ class TableStyle:
     ball_mass: float
     baulk_line: float | None = None
     d_radius: float = 0.0
-    black_from_top: float = 0.0
+    spot_rules: tuple[Spot, ...] = POOL_SPOTS
 
     def head_line(self, length: float) -> float:
         """x of the line across the table at the head end (head string, baulk line)."""
         return self.baulk_line if self.baulk_line is not None else length / 4
 
     def spots(self, length: float, width: float) -> dict[str, tuple[float, float]]:
-        """The named spots on the cloth, by their rule."""
-        mid = width / 2
-        if self.name != "snooker":
-            return {"head": (length / 4, mid), "foot": (3 * length / 4, mid)}
-        baulk = self.head_line(length)
-        return {
-            # Seen from the baulk end (x grows away from it) the right is -y.
-            "yellow": (baulk, mid - self.d_radius),
-            "green": (baulk, mid + self.d_radius),
-            "brown": (baulk, mid),
-            "blue": (length / 2, mid),
-            "pink": (3 * length / 4, mid),
-            "black": (length - self.black_from_top, mid),
-        }
+        """The named spots on the cloth, by their rules."""
+        return {spot.name: spot.at(length, width) for spot in self.spot_rules}
 
     def arcs(self, length: float, width: float) -> tuple[Arc, ...]:
         """The D (a semicircle on the baulk side of the baulk line), if the style has one."""
@@ -96,12 +108,22 @@ class TableStyle:
 # radii (43 mm, 1.68 in); the facing angles are what lets our sharp points accept what its
 # rounded jaws accept. Ball mass: 142 g, a match set's weight (the WPBSA asks only that
 # a set's balls weigh within 3 g of each other).
+BAULK_LINE = 0.737
+D_RADIUS = 0.292
 SNOOKER = TableStyle(
     "snooker",
     corner=PocketCut(135.0, 0.036, 0.043),
     side=PocketCut(100.0, 0.0241, 0.0427),
     ball_mass=0.142,
-    baulk_line=0.737,
-    d_radius=0.292,
-    black_from_top=0.324,
+    baulk_line=BAULK_LINE,
+    d_radius=D_RADIUS,
+    spot_rules=(
+        # Seen from the baulk end (x grows away from it) the right is -y.
+        Spot("yellow", from_head=BAULK_LINE, across=-D_RADIUS),
+        Spot("green", from_head=BAULK_LINE, across=D_RADIUS),
+        Spot("brown", from_head=BAULK_LINE),
+        Spot("blue", fraction=0.5),
+        Spot("pink", fraction=0.75),
+        Spot("black", from_foot=0.324),
+    ),
 )
