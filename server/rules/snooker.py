@@ -144,7 +144,10 @@ def judge(pos: Position, facts: ShotFacts) -> Ruling:
     score = pos.score
     if score is None:
         raise ValueError("a snooker position carries its frame score")
-    score = replace(score, nominated=nominee(score, facts, pos.on_table))
+    # A stroke by this player ends the opponent's run of misses (WPBSA 3.12 counts the
+    # misses of one sequence: the offender made to play again, or from the balls replaced).
+    misses = _with(score.misses, pos.opponent, 0)
+    score = replace(score, nominated=nominee(score, facts, pos.on_table), misses=misses)
     found, wrong = fouls_of(pos, score, facts)
     if found:
         return _foul(pos, score, facts, found, wrong)
@@ -180,7 +183,7 @@ def _legal(pos: Position, score: FrameScore, facts: ShotFacts) -> Ruling:
         gained = value_on(score)
     r = Ruling(spot=respotted(score, potted, legal=True))
     left = _left(pos, facts, r.spot)
-    misses = _with(score.misses, seat, 0)
+    misses = _with(score.misses, seat, 0)  # (the opponent's were cleared by `judge`)
     if not gained:
         r.score = replace(score, current_break=0, on=on_after_turn(left), nominated=None,
                           free_ball=False, misses=misses)  # fmt: skip

@@ -225,6 +225,18 @@ def test_three_misses_in_a_row_lose_the_frame():
     assert out.frame_over and game.winner == 1
 
 
+def test_misses_count_only_while_the_offender_is_made_to_play_again():
+    # WPBSA 3.12: the run of misses ends when the next player plays a stroke.
+    game = frame({**CUE_IN_BAULK, **RED_OPEN, **ALL_COLOURS})
+    game.apply(0, crafted(game.balls, hit(0, BLACK)))
+    game.decide(1, "replace")
+    game.apply(0, crafted(game.balls, hit(0, BLACK)))
+    assert game.score is not None and game.score.misses == (2, 0)
+    game.decide(1, "play")
+    game.apply(1, crafted(game.balls, hit(0, 1)))  # Ben plays a fair stroke
+    assert game.score.misses == (0, 0)
+
+
 def test_the_frame_ends_with_the_black_and_a_tie_respots_it():
     # WPBSA 3.3 Mode of Play: the frame ends when the black is potted as the last ball;
     # with the scores equal the black is re-spotted, the next score or foul ends it.
