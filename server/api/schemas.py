@@ -10,7 +10,7 @@ from server.ai import LEVELS
 
 from .inputs import Name, StrictBody
 
-GameKind = Literal["eight_ball", "nine_ball", "practice", "snooker"]
+GameKind = Literal["eight_ball", "nine_ball", "practice", "snooker", "snooker_practice"]
 
 
 class CreateRoom(StrictBody):
