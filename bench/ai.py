@@ -33,6 +33,10 @@ cue's; docs/ai.md, "Levels"). It says what the racks are lost to.
 on `fastfiz`, the tournaments' own table in our engine (2.236 x 1.116 m, and pockets
 without jaws: a ball drops as it crosses the pocket's line; `bench/fastfiz.py`).
 
+`--kind snooker` plays snooker frames (`bench/snooker.py`): the pro's self-play (the
+highest break per frame, centuries, plan times; `--only frames`) and the ladder, `--games`
+frames each.
+
 `--kind nine_ball` plays the runouts, the greedy games and the ladder at 9-ball (the
 goals are 8-ball's): a runout starts with ball in hand after the pro's 9-ball break, the 9
 on the table, no push out; the greedy baseline shoots the lowest ball.
@@ -801,9 +805,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--only", default="runouts,greedy,ladder")
     parser.add_argument(
         "--kind",
-        choices=sorted(GAME_BALL),
+        choices=[*sorted(GAME_BALL), "snooker"],
         default="eight_ball",
-        help="the game of the runouts, the greedy games and the ladder (the goals are 8-ball's)",
+        help="the game of the runouts, the greedy games and the ladder (the goals are "
+        "8-ball's); snooker plays frames instead (`bench/snooker.py`)",
     )
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--jobs", type=int, default=1, help="worker processes")
@@ -842,6 +847,10 @@ def main(argv: list[str] | None = None) -> int:
     )
     args = parser.parse_args(argv)
     parts = set(args.only.split(","))
+    if args.kind == "snooker":
+        from . import snooker
+
+        return snooker.main(args.games, args.seed, args.jobs, parts, args.steps)
     outcomes: Outcomes = {}
     before: Outcomes | None = None
     if args.paired:  # read first: a wrong path fails now, not after the games

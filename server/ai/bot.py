@@ -17,6 +17,7 @@ import numpy as np
 
 from server.engine import CUE, BallSet, Shot, Table, rack_slots
 from server.rules import BEHIND_HEAD_STRING, Game
+from server.rules.outcome import IN_D
 from server.rules.placement import can_place
 from server.rules.position import Position
 from server.rules.strategy import GameRules
@@ -100,7 +101,8 @@ class Turn:
 
     decision: an option of the pending `game.decision` (then nothing else is set).
     push_out: 9-ball, declare a push out before the shot. place: where to put the cue ball
-    (ball in hand). call: the pocket called for the 8 (`game.requires_call`). shot: the
+    (ball in hand). call: the pocket called for the 8 (`game.requires_call`). nominate:
+    snooker, the ball nominated (the colour on, the free ball) before the shot. shot: the
     stroke it intends (the room applies `Bot.execute` to it). target / pocket / chance /
     kind / via: what it is trying (for hints and logs): kind is "pot", "safety", "kick",
     "break" or "push"; a pot's via is "direct", "bank" (off a cushion), "combo" (the cue
@@ -112,6 +114,7 @@ class Turn:
     push_out: bool = False
     place: tuple[float, float] | None = None
     call: int | None = None
+    nominate: int | None = None
     shot: Shot | None = None
     kind: str | None = None
     target: int | None = None
@@ -167,7 +170,7 @@ class Bot:
         else:
             turn = self._from_here(game, search, balls, None)[1]
         self.last_sims = search.sims
-        return turn
+        return _nominated(game, turn)
 
     def _search(self, game: Game, seat: int) -> Search:
         level_index = LEVELS.index(self.level.name)
@@ -258,6 +261,10 @@ class Bot:
         ys = np.linspace(2 * r, table.width - 2 * r, 5)
         if area == BEHIND_HEAD_STRING:
             xs = np.linspace(2 * r, table.head_string, 5)
+        elif area == IN_D:  # snooker: the D's box, `can_place` keeps the D
+            d = table.cut.d_radius
+            xs = np.linspace(table.head_string - d, table.head_string, 6)
+            ys = np.linspace(table.width / 2 - d, table.width / 2 + d, 9)
         spots += [(float(x), float(y)) for x in xs for y in ys]
         legal = [s for s in spots if can_place(table, balls, area, s[0], s[1])]
         if not legal:  # a crowded head: search finely
@@ -373,7 +380,19 @@ class Bot:
             return "accept" if q >= ACCEPT_ABOVE else "rerack"
         if "shoot" in options and "pass" in options:
             return "shoot" if q >= ACCEPT_ABOVE else "pass"
+        if "play_again" in options:  # snooker, after the opponent's foul
+            if "free_ball" in options or q >= ACCEPT_ABOVE:
+                return options[0]  # the free ball if offered, else play on
+            return "replace" if "replace" in options else "play_again"
         return options[0]
+
+
+def _nominated(game: Game, turn: Turn) -> Turn:
+    """Snooker: the turn with its target nominated when one may be (a colour after a red,
+    a free ball); the search judged the stroke so, by the ball it hits first."""
+    if turn.target is not None and turn.target in game.rules.nominations(game.position()):
+        return replace(turn, nominate=turn.target)
+    return turn
 
 
 def _pot_line_spots(table: Table, ball: tuple[float, float]) -> list[tuple[float, float]]:

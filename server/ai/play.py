@@ -39,6 +39,8 @@ def play_turn(
         game.place_cue(seat, *turn.place)
     if turn.call is not None and game.requires_call:
         game.call_pocket(seat, turn.call)
+    if turn.nominate is not None:
+        game.nominate(seat, turn.nominate)
     shot = turn.shot
     if bot is not None and rng is not None:
         shot = bot.execute(shot, rng)

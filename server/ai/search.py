@@ -21,7 +21,6 @@ from server.engine.results import Event
 from server.rules.position import Position
 from server.rules.ruling import Ruling
 from server.rules.shotfacts import ShotFacts, shot_facts
-from server.rules.spotting import respot
 from server.rules.strategy import GameRules
 
 from .aiming import aim_carom, aim_for_throw, aimed, clamp_shot, perturb, pocket_window
@@ -212,6 +211,8 @@ class Search:
             groups=groups,
             called_pocket=None,
             push_out_declared=False,
+            score=ruling.score if ruling.score is not None else pos.score,
+            balls=final,
         )
 
     def outcome(
@@ -238,7 +239,7 @@ class Search:
         """The rules' ruling on a simulated shot and the table after it (balls re-spotted)."""
         ruling = self.rules.judge(pos, facts)
         if ruling.spot:
-            final = respot(self.table, final, ruling.spot)
+            final = self.rules.respot(self.table, final, ruling.spot)
         return ruling, final
 
     def _made(self, ruling: Ruling, pocketed: tuple[int, ...]) -> bool:
@@ -268,6 +269,8 @@ class Search:
             q = self.chance_for(nxt, final)
             mine = set(self.targets(pos))
             progress = PROGRESS * sum(1 for b in pocketed if b in mine)
+            if ruling.score is not None and pos.score is not None:  # snooker: by the points
+                progress = PROGRESS * (ruling.score.points[me] - pos.score.points[me])
             w = level.position
             spread = open_share(self.table, final, self.targets(nxt))
             quality = (1 - OPEN_WEIGHT) * q + OPEN_WEIGHT * spread

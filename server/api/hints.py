@@ -86,6 +86,7 @@ async def hint_for(
         "kind": turn.kind or "pot",
         "place": turn.place,
         "call": turn.call,
+        "nominate": turn.nominate,
         "angle": turn.shot.angle,
         "speed": turn.shot.speed,
         "tip": turn.shot.tip,

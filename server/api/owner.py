@@ -22,6 +22,7 @@ from server.config import Settings
 from server.players import seat_token
 from server.rooms import ActionError, LiveRoom, RoomRegistry
 from server.rooms.drills import DrillSetup
+from server.rules import PRACTICE_KINDS
 
 from .hints import hint_ask, hint_for
 from .schemas import CreateRoom
@@ -51,7 +52,7 @@ async def open_room(
     """Create the room here (limits already checked by the receiving process); `setup`:
     a drill's table (practice)."""
     try:
-        if body.opponent is not None and body.game == "practice":
+        if body.opponent is not None and body.game in PRACTICE_KINDS:
             raise HTTPException(
                 422, {"code": "bad_opponent", "message": "Practice is played alone."}
             )

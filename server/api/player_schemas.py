@@ -8,7 +8,7 @@ from pydantic import BaseModel
 
 from .inputs import Name, StrictBody
 
-RankedGame = Literal["eight_ball", "nine_ball"]
+RankedGame = Literal["eight_ball", "nine_ball", "snooker"]
 
 
 class Rename(StrictBody):

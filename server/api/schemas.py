@@ -10,7 +10,7 @@ from server.ai import LEVELS
 
 from .inputs import Name, StrictBody
 
-GameKind = Literal["eight_ball", "nine_ball", "practice"]
+GameKind = Literal["eight_ball", "nine_ball", "practice", "snooker", "snooker_practice"]
 
 
 class CreateRoom(StrictBody):
@@ -24,7 +24,8 @@ class CreateRoom(StrictBody):
         None, description=f"play the computer at this level: one of {', '.join(LEVELS)}"
     )
     ranked: bool = Field(
-        False, description="rated when both players agree (8-ball/9-ball, two players, a profile)"
+        False,
+        description="rated when both players agree (8-ball/9-ball/snooker, two players, a profile)",
     )
 
     @field_validator("opponent")

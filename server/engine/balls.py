@@ -1,7 +1,7 @@
 """The balls on a table: state per ball kept in parallel numpy arrays.
 
-Ball ids are 0 (the cue ball) to 15. A `BallSet` may hold any subset (9-ball uses 0-9);
-row `i` of every array belongs to ball `ids[i]`.
+Ball ids are 0 (the cue ball) to 21: pool uses 0-15 (9-ball 0-9), snooker 0-21 (`rack`).
+A `BallSet` may hold any subset; row `i` of every array belongs to ball `ids[i]`.
 
 Its stored form is the codec's (`server.codec.to_data`): one nested list per array, floats
 exact, so a stored table replays bit for bit.
@@ -29,7 +29,7 @@ else:
     from ..codec import Float64Array, Int64Array
 
 CUE = 0
-MAX_BALL_ID = 15
+MAX_BALL_ID = 21  # snooker: the cue ball, 15 reds and six colours
 
 # Each array's shape after the ball count.
 _SHAPES = (

@@ -8,12 +8,12 @@ et al. 2010 for the cushion, and pooltool 0.6.0's defaults (which follow DA-PP).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
 from .shot import DEFAULT_CUE_MASS_RATIO
-from .table import BALL_MASS, BALL_RADIUS
+from .table import BALL_MASS, BALL_RADIUS, Table
 
 
 @dataclass(frozen=True)
@@ -63,3 +63,20 @@ class PhysicsParams:
 
 
 DEFAULT_PARAMS = PhysicsParams()
+
+
+_by_ball: dict[tuple[float, float], PhysicsParams] = {}
+
+
+def params_for(table: Table) -> PhysicsParams:
+    """The physics of `table`'s balls: `DEFAULT_PARAMS` (pool) with the table's ball radius
+    and its style's ball mass. Cloth and cushions are the pool table's: the WPBSA specifies
+    neither, and no measurement of a snooker cloth's friction was at hand to cite. The
+    same object comes back for the same balls, so the engine's caches find it by identity."""
+    key = (table.ball_radius, table.cut.ball_mass)
+    if key == (DEFAULT_PARAMS.radius, DEFAULT_PARAMS.mass):
+        return DEFAULT_PARAMS
+    found = _by_ball.get(key)
+    if found is None:
+        found = _by_ball[key] = replace(DEFAULT_PARAMS, radius=key[0], mass=key[1])
+    return found

@@ -1,4 +1,6 @@
-"""Racks: the triangle for 8-ball and the diamond for 9-ball, with the cue ball on the head spot.
+"""Racks: the triangle for 8-ball and the diamond for 9-ball, with the cue ball on the head
+spot; snooker's 15 reds behind the pink and the six colours on their spots, the cue ball in
+the D.
 
 Real racks are never perfect: each ball sits on a lattice slightly wider than a ball
 (0.05 mm) and is moved by a seeded jitter of at most 0.025 mm, so every neighbour gap lies
@@ -19,6 +21,19 @@ JITTER = 0.025e-3  # m, largest seeded displacement of a ball
 
 SOLIDS = (1, 2, 3, 4, 5, 6, 7)
 STRIPES = (9, 10, 11, 12, 13, 14, 15)
+
+# Snooker's ball ids: 1-15 the reds, then the colours in the order they are potted (and
+# of their value, 2 to 7).
+REDS = tuple(range(1, 16))
+COLOURS: dict[str, int] = {
+    "yellow": 16,
+    "green": 17,
+    "brown": 18,
+    "blue": 19,
+    "pink": 20,
+    "black": 21,
+}
+GAMES = ("eight_ball", "nine_ball", "snooker")
 
 
 def _slots(rows: list[int], table: Table) -> list[tuple[float, float]]:
@@ -62,9 +77,47 @@ def _nine_ball_order(rng: np.random.Generator) -> list[int]:
     return [int(b) for b in order]
 
 
+def _snooker_placement(table: Table, rng: np.random.Generator) -> dict[int, tuple[float, float]]:
+    """WPBSA Section 3 Rule 2 (Positioning of Balls): the reds in a tight triangle, the apex
+    ball as near the pink as possible without touching it, its base parallel to and nearest
+    the top cushion; the colours on their spots. The cue ball starts in the D, halfway
+    between the brown and green spots (the player places it: "in-hand")."""
+    spots = table.spots
+    px, py = spots["pink"]
+    d = 2 * table.ball_radius + LATTICE_GAP
+    apex = (px + d, py)
+    slots = [
+        (apex[0] + r * d * math.sqrt(3) / 2, py + (k - r / 2) * d)
+        for r in range(5)
+        for k in range(r + 1)
+    ]
+    placement = {COLOURS[name]: spots[name] for name in COLOURS}
+    placement.update(_jittered(dict(zip(REDS, slots, strict=True)), rng))
+    bx, by = spots["brown"]
+    placement[0] = (bx, by + table.cut.d_radius / 2)
+    return placement
+
+
+def _jittered(
+    slots: dict[int, tuple[float, float]], rng: np.random.Generator
+) -> dict[int, tuple[float, float]]:
+    """Each ball moved by the seeded jitter (`JITTER`), in the order given."""
+    out = {}
+    for ball, (x, y) in slots.items():
+        angle = rng.uniform(0, 2 * math.pi)
+        shift = rng.uniform(0, JITTER)
+        out[ball] = (x + shift * math.cos(angle), y + shift * math.sin(angle))
+    return out
+
+
 def rack(game: str, table: Table, seed: int | None = 0) -> BallSet:
-    """A fresh rack for `game` ("eight_ball" or "nine_ball"), cue ball on the head spot."""
+    """A fresh rack for `game` ("eight_ball", "nine_ball": cue ball on the head spot;
+    "snooker": `_snooker_placement`)."""
     rng = np.random.default_rng(seed)
+    if game == "snooker":
+        if table.style != "snooker":
+            raise ValueError("a snooker rack needs a snooker table (Table.snooker())")
+        return BallSet.place(_snooker_placement(table, rng))
     if game == "eight_ball":
         slots = _slots([1, 2, 3, 4, 5], table)
         order = _eight_ball_order(rng)
@@ -72,7 +125,7 @@ def rack(game: str, table: Table, seed: int | None = 0) -> BallSet:
         slots = _slots([1, 2, 3, 2, 1], table)
         order = _nine_ball_order(rng)
     else:
-        raise ValueError(f"unknown game {game!r}; choose eight_ball or nine_ball")
+        raise ValueError(f"unknown game {game!r}; choose one of {GAMES}")
     placement: dict[int, tuple[float, float]] = {0: table.head_spot}
     for ball, (x, y) in zip(order, slots, strict=True):
         angle = rng.uniform(0, 2 * math.pi)

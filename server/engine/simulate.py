@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 
 from .balls import CUE, BallSet
-from .params import DEFAULT_PARAMS, PhysicsParams
+from .params import DEFAULT_PARAMS, PhysicsParams, params_for
 from .physics.constants import POCKETED
 from .physics.motion import drop_residual_spin, strike_ball
 from .physics.tick import empty_events, run_tick, run_to_rest_kernel, settle_kernel
@@ -104,10 +104,12 @@ def step(
     balls: BallSet,
     tick: float = DEFAULT_TICK,
     time: float = 0.0,
-    params: PhysicsParams = DEFAULT_PARAMS,
+    params: PhysicsParams | None = None,
 ) -> list[Event]:
-    """Advance `balls` in place by one tick; returns the tick's events (times from `time`)."""
+    """Advance `balls` in place by one tick; returns the tick's events (times from `time`).
+    `params` default to the table's (`params_for`), as in every door below."""
     geo = _geometry(table)
+    params = params if params is not None else params_for(table)
     events = empty_events(_EVENT_CAPACITY)
     n_ev, _ = run_tick(
         balls.positions,
@@ -180,8 +182,9 @@ class ShotInMotion:
         balls: BallSet,
         shot: Shot,
         tick: float = DEFAULT_TICK,
-        params: PhysicsParams = DEFAULT_PARAMS,
+        params: PhysicsParams | None = None,
     ) -> None:
+        params = params if params is not None else params_for(table)
         self.tick = float(tick)
         self.state = balls.copy()
         self._events = [strike(self.state, shot, params)]
@@ -233,7 +236,7 @@ def simulate(
     balls: BallSet,
     shot: Shot,
     tick: float = DEFAULT_TICK,
-    params: PhysicsParams = DEFAULT_PARAMS,
+    params: PhysicsParams | None = None,
 ) -> ShotResult:
     """Strike the cue ball and run ticks until every ball is at rest or pocketed.
 
@@ -251,7 +254,7 @@ def simulate_traced(
     shot: Shot,
     tolerance: Tolerance,
     tick: float = DEFAULT_TICK,
-    params: PhysicsParams = DEFAULT_PARAMS,
+    params: PhysicsParams | None = None,
 ) -> tuple[ShotResult, Trace]:
     """`simulate` and the shot's trace (within `tolerance`) from one pass over its ticks:
     the result is `simulate`'s, bit for bit. `balls` is not modified."""
@@ -265,11 +268,12 @@ def settle(
     balls: BallSet,
     shot: Shot,
     tick: float = DEFAULT_TICK,
-    params: PhysicsParams = DEFAULT_PARAMS,
+    params: PhysicsParams | None = None,
 ) -> Settled:
     """`simulate` without the frames: the same events, final table and duration, bit for
     bit, in about two fifths of the time for the short shots a search tries (less is saved
     on a break, whose many events cost the same either way). `balls` is not modified."""
+    params = params if params is not None else params_for(table)
     row = _cue_row(balls)
     (vx, vy), (wx, wy, wz) = shot.cue_ball_motion(params.radius, params.cue_mass_ratio)
     geo, dt = _geometry(table), float(tick)
@@ -287,10 +291,11 @@ def run_to_rest(
     table: Table,
     state: BallSet,
     tick: float = DEFAULT_TICK,
-    params: PhysicsParams = DEFAULT_PARAMS,
+    params: PhysicsParams | None = None,
     events: list[Event] | None = None,
 ) -> FrameSequence:
     """Advance `state` in place until no ball moves; appends events to `events`."""
+    params = params if params is not None else params_for(table)
     positions, cels, on_table, rows, _, _ = _run_kernel(
         _geometry(table), state, float(tick), _params_array(params)
     )

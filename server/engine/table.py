@@ -19,9 +19,12 @@ import dataclasses
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, fields
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import numpy as np
+from pydantic import Field
+
+from .styles import SNOOKER, Arc, PocketCut, TableStyle
 
 if TYPE_CHECKING:
     from pydantic import GetCoreSchemaHandler
@@ -49,6 +52,29 @@ SIDE_SHELF = 0.00635
 # Hole radii (pooltool 0.6.0's pocket radii).
 CORNER_HOLE = 0.062
 SIDE_HOLE = 0.0645
+
+POOL = TableStyle(
+    "pool",
+    corner=PocketCut(CORNER_FACING_DEG, CORNER_SHELF, CORNER_HOLE),
+    side=PocketCut(SIDE_FACING_DEG, SIDE_SHELF, SIDE_HOLE),
+    ball_mass=BALL_MASS,
+)
+STYLES: dict[str, TableStyle] = {style.name: style for style in (POOL, SNOOKER)}
+
+# Snooker (WPBSA Section 1 Equipment; `styles.py`): playing area, ball radius, and the
+# jaw-to-jaw mouths our sharp points need to accept what pooltool's rounded snooker jaws do.
+SNOOKER_SIZE = (3.569, 1.778)
+SNOOKER_BALL_RADIUS = 0.02625
+SNOOKER_CORNER_MOUTH = 0.094
+SNOOKER_SIDE_MOUTH = 0.128
+
+
+def style_named(name: str) -> TableStyle:
+    """The style `name`; ValueError for one that does not exist."""
+    try:
+        return STYLES[name]
+    except KeyError:
+        raise ValueError(f"unknown table style {name!r}; choose one of {sorted(STYLES)}") from None
 
 
 @dataclass(frozen=True)
@@ -86,12 +112,14 @@ class Pocket:
 
 @dataclass(frozen=True)
 class Table:
-    """A pool table: playing-surface size, cushions, jaws and pockets (all derived).
+    """A table: playing-surface size, cushions, jaws and pockets (all derived), cut and
+    marked in its `style` ("pool" or "snooker", `styles.py`).
 
     Stored through the codec (`server.codec.to_data`) as its constructor fields only,
-    `{"length", "width", "ball_radius", "corner_mouth", "side_mouth"}`; the geometry is
-    rebuilt on load. The codec also loads the older stored form, those fields as a list.
-    `to_dict` is not storage: it is the derived geometry browsers draw.
+    `{"length", "width", "ball_radius", "corner_mouth", "side_mouth"}` and `"style"` when
+    it is not "pool" (so a pool table's stored form is what it always was); the geometry
+    is rebuilt on load. The codec also loads the older stored form, those fields as a
+    list. `to_dict` is not storage: it is the derived geometry browsers draw.
     """
 
     length: float
@@ -99,6 +127,8 @@ class Table:
     ball_radius: float = BALL_RADIUS
     corner_mouth: float = CORNER_MOUTH
     side_mouth: float = SIDE_MOUTH
+    # Not stored when "pool", so a pool table's stored form is what it always was.
+    style: Annotated[str, Field(exclude_if=lambda style: style == "pool")] = "pool"
     cushions: tuple[Cushion, ...] = field(init=False, repr=False)
     pockets: tuple[Pocket, ...] = field(init=False, repr=False)
 
@@ -113,16 +143,40 @@ class Table:
             ) from None
         return cls(length, width)
 
-    def fields(self) -> list[float]:
+    @classmethod
+    def snooker(cls) -> Table:
+        """The WPBSA snooker table: 3569 x 1778 mm, 52.5 mm balls, snooker pockets."""
+        length, width = SNOOKER_SIZE
+        return cls(
+            length,
+            width,
+            SNOOKER_BALL_RADIUS,
+            SNOOKER_CORNER_MOUTH,
+            SNOOKER_SIDE_MOUTH,
+            style=SNOOKER.name,
+        )
+
+    @property
+    def cut(self) -> TableStyle:
+        """The style this table is cut and marked in."""
+        return style_named(self.style)
+
+    def fields(self) -> list[float | str]:
         """The constructor fields in order: the list form `from_fields` reads (a shot's
-        stored table)."""
-        return [getattr(self, f.name) for f in dataclasses.fields(self) if f.init]
+        stored table); the style only when it is not "pool"."""
+        values: list[float | str] = [
+            getattr(self, f.name) for f in dataclasses.fields(self) if f.init and f.name != "style"
+        ]
+        return values if self.style == POOL.name else [*values, self.style]
 
     @classmethod
-    def from_fields(cls, values: Sequence[float]) -> Table:
+    def from_fields(cls, values: Sequence[float | str]) -> Table:
         """A table from its constructor fields in order: the list form stored before the
-        codec (`[length, width, ball_radius, corner_mouth, side_mouth]`)."""
-        return cls(*(float(v) for v in values))
+        codec (`[length, width, ball_radius, corner_mouth, side_mouth]`, then the style)."""
+        data = _fields_by_name(list(values))
+        assert isinstance(data, dict)
+        style = str(data.pop("style", POOL.name))
+        return cls(**{name: float(v) for name, v in data.items()}, style=style)
 
     @classmethod
     def __get_pydantic_core_schema__(cls, source: Any, handler: GetCoreSchemaHandler) -> CoreSchema:
@@ -133,7 +187,12 @@ class Table:
 
     def __post_init__(self) -> None:
         cushions, pockets = _build_geometry(
-            self.length, self.width, self.corner_mouth, self.side_mouth, self.ball_radius
+            self.length,
+            self.width,
+            self.corner_mouth,
+            self.side_mouth,
+            self.ball_radius,
+            style_named(self.style),
         )
         object.__setattr__(self, "cushions", cushions)
         object.__setattr__(self, "pockets", pockets)
@@ -141,8 +200,29 @@ class Table:
     # --- strings and spots -------------------------------------------------------------
     @property
     def head_string(self) -> float:
-        """x of the head string: a quarter of the length from the head cushion."""
-        return self.length / 4
+        """x of the head string: a quarter of the length from the head cushion (pool); the
+        baulk line on a snooker table."""
+        return self.cut.head_line(self.length)
+
+    @property
+    def spots(self) -> dict[str, tuple[float, float]]:
+        """The named spots on the cloth (pool: head, foot; snooker: the six colours')."""
+        return self.cut.spots(self.length, self.width)
+
+    @property
+    def arcs(self) -> tuple[Arc, ...]:
+        """The arcs drawn on the cloth (snooker's D)."""
+        return self.cut.arcs(self.length, self.width)
+
+    def in_d(self, x: float, y: float) -> bool:
+        """A ball centred at (x, y) is in the D: on or behind the baulk line and within the
+        D's radius of its centre (snooker), to a nanometre (the spots on the D's edge are
+        sums that round)."""
+        cut = self.cut
+        if cut.d_radius <= 0:
+            return False
+        cx, cy = cut.head_line(self.length), self.width / 2
+        return x <= cx + 1e-9 and math.hypot(x - cx, y - cy) <= cut.d_radius + 1e-9
 
     @property
     def head_spot(self) -> tuple[float, float]:
@@ -207,6 +287,17 @@ class Table:
             "length": self.length,
             "width": self.width,
             "ball_radius": self.ball_radius,
+            "style": self.style,
+            "spots": {name: list(xy) for name, xy in self.spots.items()},
+            "arcs": [
+                {
+                    "center": list(a.center),
+                    "radius": a.radius,
+                    "start_deg": a.start_deg,
+                    "end_deg": a.end_deg,
+                }
+                for a in self.arcs
+            ],
             "head_string": self.head_string,
             "head_spot": list(self.head_spot),
             "foot_spot": list(self.foot_spot),
@@ -237,7 +328,12 @@ def _fields_by_name(value: object) -> object:
 
 
 def _build_geometry(
-    length: float, width: float, corner_mouth: float, side_mouth: float, ball_radius: float
+    length: float,
+    width: float,
+    corner_mouth: float,
+    side_mouth: float,
+    ball_radius: float,
+    style: TableStyle = POOL,
 ) -> tuple[tuple[Cushion, ...], tuple[Pocket, ...]]:
     a = corner_mouth / math.sqrt(2.0)  # each corner jaw's distance from the corner
     s = side_mouth / 2.0
@@ -283,10 +379,9 @@ def _build_geometry(
         along[c.end] = ((-ex / n, -ey / n), c.normal)
     pockets = []
     for name, jaws, (ux, uy) in mouths:
-        side = "side" in name
-        angle = math.radians(SIDE_FACING_DEG if side else CORNER_FACING_DEG)
-        shelf = SIDE_SHELF if side else CORNER_SHELF
-        hole = SIDE_HOLE if side else CORNER_HOLE
+        cut = style.side if "side" in name else style.corner
+        angle = math.radians(cut.facing_deg)
+        shelf, hole = cut.shelf, cut.hole
         mx = (jaws[0][0] + jaws[1][0]) / 2
         my = (jaws[0][1] + jaws[1][1]) / 2
         hole_center = (mx + (shelf + hole) * ux, my + (shelf + hole) * uy)

@@ -82,6 +82,14 @@ class Call(ClientMessage):
     pocket: Annotated[int, Field(ge=0, le=5)]
 
 
+class Nominate(ClientMessage):
+    """Snooker: nominate the colour on, or the free ball (a ball id from the state's
+    `nominations`)."""
+
+    type: Literal["nominate"]
+    ball: Annotated[int, Field(ge=1, le=21)]
+
+
 class Decide(ClientMessage):
     """Answer the pending rules decision with one of its options."""
 
@@ -134,6 +142,7 @@ AnyClientMessage = Annotated[
     | PlaceCue
     | Aim
     | Call
+    | Nominate
     | Decide
     | PushOut
     | Rerack

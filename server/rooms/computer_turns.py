@@ -75,5 +75,7 @@ class ComputerTurns:
             room.place_cue(seat, *turn.place)
         if turn.call is not None and room.match is not None and room.match.game.requires_call:
             room.call_pocket(seat, turn.call)
+        if turn.nominate is not None:
+            room.nominate(seat, turn.nominate)
         if shot is not None:
             self.actions.start_shot(seat, shot)

@@ -21,6 +21,7 @@ from server.protocol.inbound import (
     Chat,
     Concede,
     Decide,
+    Nominate,
     Ping,
     PlaceCue,
     PushOut,
@@ -229,7 +230,7 @@ class LiveRoom:
                 self.stream.relay(relay, exclude=conn)
             case Shoot(angle=angle, speed=speed, tip=tip, elevation=elevation):
                 self.start_shot(seat, _shot(angle, speed, tip, elevation))
-            case PlaceCue() | Call() | Decide() | PushOut() | Rerack():
+            case PlaceCue() | Call() | Nominate() | Decide() | PushOut() | Rerack():
                 self._arrange(seat, msg)
                 self.changed()
             case Concede(game=game):
@@ -239,7 +240,9 @@ class LiveRoom:
             case _:
                 assert_never(msg)
 
-    def _arrange(self, seat: int | None, msg: PlaceCue | Call | Decide | PushOut | Rerack) -> None:
+    def _arrange(
+        self, seat: int | None, msg: PlaceCue | Call | Nominate | Decide | PushOut | Rerack
+    ) -> None:
         """The actions that set the table up for the next shot (each then `changed`)."""
         room = self.room
         match msg:
@@ -247,6 +250,8 @@ class LiveRoom:
                 room.place_cue(seat, x, y)
             case Call(pocket=pocket):
                 room.call_pocket(seat, pocket)
+            case Nominate(ball=ball):
+                room.nominate(seat, ball)
             case Decide(option=option, game=game):
                 room.decide(seat, option, game)
             case PushOut():

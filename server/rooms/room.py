@@ -31,6 +31,7 @@ from server.protocol.outbound import (
     StateMessage,
 )
 from server.rules import GAME_KINDS, Match, Outcome, RulesError
+from server.rules.kinds import rules_for
 
 from .drills import DrillScore, DrillSetup, scored, set_up
 from .errors import ActionError
@@ -127,7 +128,7 @@ class Room:
 
     @property
     def practice(self) -> bool:
-        return self.game == "practice"
+        return rules_for(self.game).seats == 1
 
     def join(self, name: str, token: str | None = None) -> tuple[int, str]:
         """Take the first free seat; returns (seat, token). Starts the match when full.
@@ -254,7 +255,7 @@ class Room:
         return _table_json(self._table())
 
     def _table(self) -> Table:
-        return self.match.game.table if self.match else Table.pool("9ft")
+        return self.match.game.table if self.match else rules_for(self.game).table()
 
     def room_info(self) -> RoomInfo:
         return RoomInfo(
@@ -390,6 +391,11 @@ class Room:
         match, seat = self._require_player(seat)
         with _rules():
             match.game.call_pocket(seat, pocket)
+
+    def nominate(self, seat: int | None, ball: int) -> None:
+        match, seat = self._require_player(seat)
+        with _rules():
+            match.game.nominate(seat, ball)
 
     def decide(self, seat: int | None, option: str, game: int | None = None) -> None:
         match, seat = self._require_player(seat)

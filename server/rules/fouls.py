@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from .outcome import Foul
-from .words import ball
+from .words import and_list, ball, snooker_ball
 
 LABELS = {
     "scratch": "scratch",
@@ -13,6 +13,9 @@ LABELS = {
     "illegal_break": "illegal break",
     "shot_clock": "time ran out",
     "ball_off_table": "ball off the table",
+    "in_off": "in-off",
+    "potted_not_on": "a ball not on potted",
+    "miss": "a miss",
 }
 
 
@@ -61,3 +64,27 @@ def illegal_break(name: str, to_rail: int) -> Foul:
 
 def shot_clock(name: str) -> Foul:
     return Foul("shot_clock", f"{name} ran out of time to shoot.")
+
+
+# Snooker (WPBSA Section 3, 10 Fouls; 12 Foul and a Miss).
+def no_ball_hit(name: str) -> Foul:
+    return Foul("no_contact", f"{name}'s cue ball did not touch any ball.")
+
+
+def snooker_wrong_first(name: str, hit: int, expected: str) -> Foul:
+    return Foul(
+        "wrong_ball_first", f"{name} hit {snooker_ball(hit)} first; the ball on was {expected}."
+    )
+
+
+def potted_not_on(name: str, potted: list[int]) -> Foul:
+    said = and_list(snooker_ball(b) for b in potted)
+    return Foul("potted_not_on", f"{name} potted {said}, not a ball on.")
+
+
+def in_off(name: str) -> Foul:
+    return Foul("in_off", f"{name}'s cue ball went into a pocket (in-off).")
+
+
+def miss(name: str) -> Foul:
+    return Foul("miss", f"{name} did not hit the ball on and was not snookered: a miss.")

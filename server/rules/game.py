@@ -10,8 +10,10 @@ and returns a `Ruling`; this class owns the state and applies the ruling.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
-from typing import Any
+from dataclasses import dataclass, field, replace
+from typing import Annotated, Any
+
+from pydantic import Field
 
 from server.codec import from_data, to_dict
 from server.engine import CUE, BallSet, ShotResult, Table, rack
@@ -20,15 +22,16 @@ from .errors import IllegalActionError
 from .fouls import label
 from .kinds import rules_for
 from .options import DEFAULT_OPTIONS, RuleOptions
-from .outcome import BEHIND_HEAD_STRING, Decision, Outcome
+from .outcome import BEHIND_HEAD_STRING, IN_D, Decision, Outcome
 from .placement import can_place
 from .position import Position
 from .ruling import Ruling
 from .shotfacts import shot_facts
-from .spotting import respot
+from .snooker import scoreboard
+from .snooker_score import FrameScore
 from .stored import Groups, StoredTable
 from .strategy import GameRules
-from .words import and_list, balls, capitalised
+from .words import and_list, capitalised
 
 RERACK_SEED_STEP = 7919  # each rack of a game gets its own seed, reproducibly
 
@@ -36,6 +39,11 @@ RERACK_SEED_STEP = 7919  # each rack of a game gets its own seed, reproducibly
 def _racked(rules: GameRules, table: Table, seed: int, racks: int) -> BallSet:
     """The balls of rack number `racks` (from 0) of a game seeded `seed`."""
     return rack(rules.rack, table, seed=seed + RERACK_SEED_STEP * racks)
+
+
+# Snooker's fields are not stored while empty, so a pool game's stored form is what it
+# always was.
+_UNLESS_SET = Field(exclude_if=lambda value: value is None)
 
 
 @dataclass(eq=False)
@@ -47,7 +55,9 @@ class Game:
     `fouls_in_row`, `over` / `winner` / `reason`, `last_outcome` and `notice` (what the
     last decision, push out or re-rack did); `balls` is the table at rest (copy it before
     mutating it). `pending` names the pending decision's kind and `after_decision_bih` the
-    ball in hand once it is taken. Start a game with `Game.new`.
+    ball in hand once it is taken. `score` is a snooker frame's points, break and ball on
+    (`points` reads them); `replaced` / `replaced_on` the table and ball on before a miss,
+    for the decision to replace the balls. Start a game with `Game.new`.
     """
 
     kind: str
@@ -74,6 +84,9 @@ class Game:
     reason: str | None = None
     last_outcome: Outcome | None = None
     notice: str | None = None
+    score: Annotated[FrameScore | None, _UNLESS_SET] = None
+    replaced: Annotated[BallSet | None, _UNLESS_SET] = None
+    replaced_on: Annotated[str | None, _UNLESS_SET] = None
 
     @classmethod
     def new(
@@ -93,7 +106,7 @@ class Game:
             raise ValueError(f"{kind} takes {rules.seats} player{plural}, not {len(seated)}")
         if breaker not in range(len(seated)):
             raise ValueError("breaker must be a seat (0 or 1)")
-        table = table if table is not None else Table.pool("9ft")
+        table = table if table is not None else rules.table()
         game = cls(kind, seated, table, _racked(rules, table, seed, 0), seed, options)
         game._ready(breaker)
         return game
@@ -124,6 +137,13 @@ class Game:
         self.fouls_in_row = [0] * len(self.players)
         self.push_out_available = False
         self.push_out_declared = False
+        self.score = rules.new_score(len(self.players))
+        self.replaced, self.replaced_on = None, None
+
+    @property
+    def points(self) -> tuple[int, ...]:
+        """Each seat's points in the frame (snooker; zeros for the pool games)."""
+        return self.score.points if self.score else (0,) * len(self.players)
 
     # --- what is legal now -------------------------------------------------------------
     def position(self) -> Position:
@@ -140,6 +160,8 @@ class Game:
             fouls_in_row=tuple(self.fouls_in_row),
             called_pocket=self.called_pocket,
             push_out_declared=self.push_out_declared,
+            score=self.score,
+            balls=self.balls,
         )
 
     @property
@@ -187,7 +209,9 @@ class Game:
         if self.ball_in_hand is None:
             raise IllegalActionError("no_ball_in_hand", "You do not have ball in hand.")
         if not can_place(self.table, self.balls, self.ball_in_hand, x, y):
-            where = "behind the head string, " if self.ball_in_hand == BEHIND_HEAD_STRING else ""
+            where = {BEHIND_HEAD_STRING: "behind the head string, ", IN_D: "in the D, "}.get(
+                self.ball_in_hand or "", ""
+            )
             raise IllegalActionError(
                 "illegal_placement",
                 f"The cue ball must go {where}on the table and clear of the other balls.",
@@ -210,6 +234,16 @@ class Game:
                 "bad_pocket", f"Pick a pocket from 0 to {len(self.table.pockets) - 1}."
             )
         self.called_pocket = pocket
+
+    def nominate(self, seat: int, ball: int) -> None:
+        """Snooker: nominate the colour on, or the free ball (WPBSA 2.10 Nominated Ball)."""
+        self._check_free(seat)
+        choices = self.rules.nominations(self.position())
+        if not choices:
+            raise IllegalActionError("nomination_not_needed", "There is nothing to nominate now.")
+        if isinstance(ball, bool) or ball not in choices or self.score is None:
+            raise IllegalActionError("bad_nomination", "Nominate a ball that may be nominated.")
+        self.score = replace(self.score, nominated=ball)
 
     def declare_push_out(self, seat: int) -> None:
         """9-ball: announce a push out for the shot right after the break (the rules offer
@@ -248,9 +282,9 @@ class Game:
             self.notice = f"{name} chose a re-rack; {self.players[other]} breaks again."
         elif option == "spot":
             spotted = self.rules.spot_choice
-            self.balls = respot(self.table, self.balls, spotted)
+            self.balls = self.rules.respot(self.table, self.balls, spotted)
             self.turn, self.ball_in_hand = seat, bih
-            self.notice = f"{name} spots {balls(spotted)} and shoots."
+            self.notice = f"{name} spots {self.rules.ball_names(spotted)} and shoots."
         elif option == "accept":
             self.turn, self.ball_in_hand = seat, bih
             self.notice = f"{name} accepts the table and shoots."
@@ -260,8 +294,32 @@ class Game:
         elif option == "pass":
             self.turn, self.ball_in_hand = other, None
             self.notice = f"{name} passes; {self.players[other]} must shoot."
+        elif option in ("play", "free_ball", "play_again", "replace"):
+            self._after_snooker_foul(seat, option, bih)
         else:  # pragma: no cover - options come from the rules
             raise AssertionError(f"unhandled option {option!r} for {pending}")
+
+    def _after_snooker_foul(self, seat: int, option: str, bih: str | None) -> None:
+        """Snooker: play on, with a free ball, or have the offender play again, from here
+        or with the balls replaced (WPBSA 3.9, 3.10, 3.12)."""
+        name, other = self.players[seat], 1 - seat
+        score = self.score
+        assert score is not None
+        if option == "replace" and self.replaced is not None:
+            self.balls = self.replaced
+            self.score = replace(score, on=self.replaced_on or score.on)
+            bih = None
+        self.replaced, self.replaced_on = None, None
+        if option in ("play", "free_ball"):
+            self.turn, self.ball_in_hand = seat, bih
+            self.score = replace(score, free_ball=option == "free_ball")
+            self.notice = (
+                f"{name} takes a free ball." if option == "free_ball" else f"{name} plays."
+            )
+        else:
+            self.turn, self.ball_in_hand = other, bih
+            how = "from where the balls were" if option == "replace" else "again"
+            self.notice = f"{name} has {self.players[other]} play {how}."
 
     # --- shots -------------------------------------------------------------------------
     def apply(self, seat: int, result: ShotResult) -> Outcome:
@@ -273,12 +331,17 @@ class Game:
         ruling = self.rules.judge(self.position(), facts)
         pocketed = facts.pocketed + ((CUE,) if facts.scratch and not facts.cue_off_table else ())
         if facts.pocketed:
-            ruling.notes.insert(0, f"{self.players[seat]} pocketed {balls(facts.pocketed)}.")
+            said = self.rules.ball_names(facts.pocketed)
+            ruling.notes.insert(0, f"{self.players[seat]} pocketed {said}.")
         final = result.final.copy()
+        self.replaced = self.balls.copy() if ruling.miss else None
+        self.replaced_on = self.score.on if ruling.miss and self.score else None
         if ruling.spot:
-            final = respot(self.table, final, ruling.spot)
+            final = self.rules.respot(self.table, final, ruling.spot)
             verb = "is" if len(ruling.spot) == 1 else "are"
-            ruling.notes.append(capitalised(f"{balls(ruling.spot)} {verb} spotted."))
+            ruling.notes.append(
+                capitalised(f"{self.rules.ball_names(ruling.spot)} {verb} spotted.")
+            )
         self.balls = final
         return self._settle(seat, ruling, pocketed)
 
@@ -330,6 +393,8 @@ class Game:
         self.push_out_available = ruling.push_out_next and ruling.winner is None
         if ruling.groups:
             self.groups = dict(ruling.groups)
+        if ruling.score is not None:
+            self.score = ruling.score
         parts = []
         if fouled:
             parts.append(f"Foul: {and_list(label(f) for f in ruling.fouls)}.")
@@ -353,11 +418,7 @@ class Game:
             self.ball_in_hand = ruling.ball_in_hand
             following = self.players[next_turn]
             if fouled:
-                where = " behind the head string" if self.ball_in_hand == BEHIND_HEAD_STRING else ""
-                parts.append(f"Ball in hand{where} for {following}.")
-                warning = self.rules.foul_warning(self.fouls_in_row, seat, name)
-                if warning:
-                    parts.append(warning)
+                parts += self._after_foul_words(seat, following)
             else:
                 if not pocketed and not ruling.notes:
                     parts.append("No ball pocketed.")
@@ -382,6 +443,15 @@ class Game:
                 decision=self.decision,
             )
         )
+
+    def _after_foul_words(self, seat: int, following: str) -> list[str]:
+        """Who plays after a foul and from where, and the rules' warning if any."""
+        if self.ball_in_hand is None:
+            return [f"{following} to play."]
+        where = {BEHIND_HEAD_STRING: " behind the head string", IN_D: " in the D"}
+        words = [f"Ball in hand{where.get(self.ball_in_hand, '')} for {following}."]
+        warning = self.rules.foul_warning(self.fouls_in_row, seat, self.players[seat])
+        return [*words, warning] if warning else words
 
     def _record(self, outcome: Outcome) -> Outcome:
         self.last_outcome = outcome
@@ -414,7 +484,7 @@ class Game:
         """JSON-able: everything a client shows."""
         pos = self.position()
         rules = self.rules
-        return {
+        state = {
             "kind": self.kind,
             "players": list(self.players),
             "turn": self.turn,
@@ -442,3 +512,8 @@ class Game:
             "notice": self.notice,
             "last_outcome": self.last_outcome.to_dict() if self.last_outcome else None,
         }
+        if self.score is not None:  # snooker's scoreboard (a pool game's state is as it was)
+            state["points"] = list(self.points)
+            state["nominations"] = [] if self.over or self.decision else rules.nominations(pos)
+            state["frame"] = scoreboard(pos)
+        return state

@@ -9,10 +9,17 @@ from __future__ import annotations
 
 from .eight_ball import EightBallRules
 from .nine_ball import NineBallRules
-from .practice import PracticeRules
+from .practice import PracticeRules, SnookerPracticeRules
+from .snooker import SnookerRules
 from .strategy import GameRules
 
-STRATEGIES: tuple[GameRules, ...] = (EightBallRules(), NineBallRules(), PracticeRules())
+STRATEGIES: tuple[GameRules, ...] = (
+    EightBallRules(),
+    NineBallRules(),
+    PracticeRules(),
+    SnookerRules(),
+    SnookerPracticeRules(),
+)
 RULES: dict[str, GameRules] = {rules.kind: rules for rules in STRATEGIES}
 GAME_KINDS = tuple(RULES)
 

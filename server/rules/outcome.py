@@ -13,6 +13,7 @@ from server.codec import from_data, to_dict
 
 ANYWHERE = "anywhere"
 BEHIND_HEAD_STRING = "behind_head_string"
+IN_D = "in_d"  # snooker: on or within the lines of the D (WPBSA 2.7 In-hand)
 
 
 @dataclass(frozen=True)
@@ -54,7 +55,7 @@ class Outcome:
     shooter: the seat that acted. pocketed: object and cue balls that dropped, in order
     (balls later re-spotted included; see `spotted`). fouls: every foul on the shot.
     continues: the shooter stays at the table. next_turn: the seat to act next.
-    ball_in_hand: None, "anywhere" or "behind_head_string", for `next_turn`.
+    ball_in_hand: None, "anywhere", "behind_head_string" or "in_d", for `next_turn`.
     frame_over / winner / reason: whether the game ended, who won, why (a sentence).
     message: what a player reads, e.g. "Foul: scratch. Ball in hand for Ana."
     spotted: balls put back on the table by the rules. decision: a choice now pending.

@@ -8,7 +8,7 @@ import numpy as np
 
 from server.engine import CUE, BallSet, Table
 
-from .outcome import BEHIND_HEAD_STRING
+from .outcome import BEHIND_HEAD_STRING, IN_D
 
 
 def is_free(table: Table, balls: BallSet, x: float, y: float, ignore: int = CUE) -> bool:
@@ -24,7 +24,8 @@ def can_place(table: Table, balls: BallSet, area: str | None, x: float, y: float
     """The cue ball may be put at (x, y) with ball in hand `area`.
 
     Inside the bed clear of the cushions, not overlapping another ball and, for
-    "behind_head_string", with its centre on or behind the head string (x <= head_string).
+    "behind_head_string", with its centre on or behind the head string (x <= head_string);
+    for "in_d", in the D (snooker).
     """
     if area is None:
         return False
@@ -35,5 +36,7 @@ def can_place(table: Table, balls: BallSet, area: str | None, x: float, y: float
     if not table.contains(x, y):
         return False
     if area == BEHIND_HEAD_STRING and x > table.head_string:
+        return False
+    if area == IN_D and not table.in_d(x, y):
         return False
     return is_free(table, balls, x, y)

@@ -6,11 +6,12 @@ only be a function of the position and the shot; `Game` alone changes state.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
-from server.engine import CUE, Table
+from server.engine import CUE, BallSet, Table
 
 from .options import RuleOptions
+from .snooker_score import FrameScore
 
 
 @dataclass(frozen=True)
@@ -21,7 +22,8 @@ class Position:
     included), in the ball set's order. turn: the seat to shoot. breaking: the next shot
     is the break. groups: 8-ball, the group of each seat once decided. fouls_in_row: per
     seat. called_pocket: 8-ball, the pocket called for the 8. push_out_declared: 9-ball,
-    the next shot is a push out.
+    the next shot is a push out. score: snooker, the frame's points, break and ball on.
+    balls: the table at rest (the referee's eye: whether the striker is snookered).
     """
 
     players: tuple[str, ...]
@@ -34,6 +36,8 @@ class Position:
     fouls_in_row: tuple[int, ...] = ()
     called_pocket: int | None = None
     push_out_declared: bool = False
+    score: FrameScore | None = None
+    balls: BallSet | None = field(default=None, compare=False, repr=False)
 
     @property
     def shooter(self) -> str:

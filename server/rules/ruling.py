@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from .outcome import Decision, Foul
+from .snooker_score import FrameScore
 
 
 @dataclass
@@ -20,6 +21,8 @@ class Ruling:
     next player (or once the decision is taken). notes: sentences to show.
     push_out_next: 9-ball, the next shot may be a push out. break_passes_to: the next shot
     is a break again, by this seat (the shot clock ran out on the break).
+    score: the frame's points after the shot (snooker). miss: the foul was a miss, so the
+    balls may be replaced (snooker).
     """
 
     fouls: list[Foul] = field(default_factory=list)
@@ -34,3 +37,5 @@ class Ruling:
     notes: list[str] = field(default_factory=list)
     push_out_next: bool = False
     break_passes_to: int | None = None
+    score: FrameScore | None = None
+    miss: bool = False

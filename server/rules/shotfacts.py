@@ -7,7 +7,7 @@ Rules, "cue ball scratch or off the table").
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from server.engine import CUE, OFF_TABLE, BallSet, EventKind, MotionState, Settled, ShotResult
 from server.engine.results import EVENT_CODES
@@ -32,6 +32,8 @@ class ShotFacts:
     balls_to_rail: distinct object balls that reached a cushion (counts for a legal break).
     off_table: object balls that left the table (never in `pocketed`), in id order.
     cue_off_table: the cue ball left the table (a scratch).
+    final: the table at rest after the shot, before the rules re-spot anything (not a
+    fact compared: the facts of a settled and a simulated shot are equal).
     """
 
     first_contact: int | None
@@ -42,6 +44,7 @@ class ShotFacts:
     balls_to_rail: frozenset[int]
     off_table: tuple[int, ...] = ()
     cue_off_table: bool = False
+    final: BallSet | None = field(default=None, compare=False, repr=False)
 
     @property
     def any_pocketed(self) -> bool:
@@ -98,4 +101,5 @@ def shot_facts(before: BallSet, result: ShotResult | Settled) -> ShotFacts:
         balls_to_rail=frozenset(to_rail),
         off_table=tuple(sorted(flown - {CUE})),
         cue_off_table=CUE in flown,
+        final=final,
     )

@@ -6,9 +6,13 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Protocol
 
+from server.engine import BallSet, Table
+
+from . import spotting, words
 from .position import Position
 from .ruling import Ruling
 from .shotfacts import ShotFacts
+from .snooker_score import FrameScore
 
 
 class GameRules(Protocol):
@@ -78,3 +82,24 @@ class GameRules(Protocol):
     def foul_warning(self, fouls_in_row: Sequence[int], seat: int, name: str) -> str | None:
         """A sentence warning `seat` (called `name`) about its count, if it needs one."""
         ...
+
+    # The pool kinds share these answers; snooker gives its own.
+    def table(self) -> Table:
+        """The table a game of this kind is played on unless told otherwise."""
+        return Table.pool("9ft")
+
+    def new_score(self, seats: int) -> FrameScore | None:  # noqa: ARG002 - pool keeps none
+        """The points kept in a frame (snooker), None for a game won by its last ball."""
+        return None
+
+    def nominations(self, pos: Position) -> list[int]:  # noqa: ARG002 - pool has none
+        """The balls the striker may nominate now (snooker: a colour, a free ball)."""
+        return []
+
+    def ball_names(self, ball_ids: Sequence[int]) -> str:
+        """'the 3 and the 9': the balls as players name them."""
+        return words.balls(ball_ids)
+
+    def respot(self, table: Table, balls: BallSet, ball_ids: tuple[int, ...]) -> BallSet:
+        """`balls` with `ball_ids` put back on the table (pool: the foot spot)."""
+        return spotting.respot(table, balls, ball_ids)

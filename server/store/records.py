@@ -44,7 +44,7 @@ class ShotRecord:
     game: int
     seat: int
     shot: dict[str, Any]  # {"angle": float, "speed": float, "tip": [side, height]}
-    table: list[float]  # Table(*table)
+    table: list[float | str]  # Table.from_fields(table): the numbers, then a style but pool
     balls: dict[str, Any]  # BallSet.to_dict() before the shot
     outcome: dict[str, Any]  # Outcome.to_dict()
     played_at: float

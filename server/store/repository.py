@@ -322,7 +322,7 @@ class Repository:
         game: int,
         seat: int,
         shot: dict[str, Any],
-        table: list[float],
+        table: list[float | str],
         balls: dict[str, Any],
         outcome: dict[str, Any],
         played_at: float | None = None,

@@ -19,14 +19,66 @@ export const BALL_COLORS = {
 export const SOLIDS = [1, 2, 3, 4, 5, 6, 7];
 export const STRIPES = [9, 10, 11, 12, 13, 14, 15];
 
-/** @param {number} id */
-export function isStripe(id) {
-  return id >= 9 && id <= 15;
+/**
+ * Snooker's balls (the server's ids): 1-15 the reds, 16-21 yellow to black.
+ * @type {Record<number, string>}
+ */
+export const SNOOKER_COLORS = {
+  0: '#f7f3e6',
+  16: '#f4d21d', // yellow
+  17: '#138a43', // green
+  18: '#7a4a1e', // brown
+  19: '#1d4fc2', // blue
+  20: '#f08cb0', // pink
+  21: '#111111', // black
+};
+const SNOOKER_RED = '#c8141b';
+
+/** @type {Record<number, string>} snooker colours by id, as players name them */
+export const SNOOKER_NAMES = {
+  16: 'yellow', 17: 'green', 18: 'brown', 19: 'blue', 20: 'pink', 21: 'black',
+};
+
+/**
+ * @param {number} id
+ * @param {string} [style] the table's style: "pool" or "snooker"
+ */
+export function isStripe(id, style = 'pool') {
+  return style === 'pool' && id >= 9 && id <= 15;
 }
 
-/** @param {number} id */
-export function ballColor(id) {
+/**
+ * @param {number} id
+ * @param {string} [style] the table's style: "pool" or "snooker"
+ */
+export function ballColor(id, style = 'pool') {
+  if (style === 'snooker') return SNOOKER_COLORS[id] ?? SNOOKER_RED;
   return BALL_COLORS[id >= 9 ? id - 8 : id];
+}
+
+/**
+ * A practice table's kind (one player, no race): on the pool or the snooker table.
+ * @param {string | null | undefined} kind
+ */
+export function isPractice(kind) {
+  return kind === 'practice' || kind === 'snooker_practice';
+}
+
+/**
+ * "the pink", "a red": a snooker ball as players name it.
+ * @param {number} id
+ */
+export function snookerBallName(id) {
+  return SNOOKER_NAMES[id] ? `the ${SNOOKER_NAMES[id]}` : 'a red';
+}
+
+/**
+ * The ball ids a table's sprites are built for.
+ * @param {string} [style]
+ * @returns {number[]}
+ */
+export function ballIds(style = 'pool') {
+  return [...Array(style === 'snooker' ? 22 : 16).keys()];
 }
 
 /**

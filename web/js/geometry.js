@@ -18,6 +18,9 @@
  * @property {number} head_string x of the head string
  * @property {Vec} [head_spot]
  * @property {Vec} [foot_spot]
+ * @property {string} [style] "pool" or "snooker"
+ * @property {Record<string, Vec>} [spots] the named spots (snooker: the colours')
+ * @property {{center: Vec, radius: number, start_deg: number, end_deg: number}[]} [arcs] the D
  * @property {{start: Vec, end: Vec, normal: Vec}[]} cushions noses, inward normals
  * @property {{name?: string, center: Vec, radius: number, jaws?: Vec[], outward?: Vec}[]} pockets
  */
@@ -36,7 +39,12 @@
  * @property {(a: number) => number} screenAngle a table direction as a screen angle (y down)
  */
 
-/** @typedef {{x0: number, y0: number, x1: number, y1: number}} Area where a centre may go */
+/**
+ * Where a centre may go: a box, and within it a disc when `disc` is given (snooker's D:
+ * the half of the disc inside the box).
+ * @typedef {{x0: number, y0: number, x1: number, y1: number,
+ *   disc?: {cx: number, cy: number, r: number}}} Area
+ */
 
 /** Width of the cushion rubber and of the wooden rail, in metres (drawing only). */
 export const CUSHION_WIDTH = 0.05;
@@ -255,6 +263,12 @@ export function unit(x, y) {
 export function placementArea(table, ballInHand) {
   if (!ballInHand) return null;
   const r = table.ball_radius;
+  const d = table.arcs?.[0];
+  if (ballInHand === 'in_d' && d) { // snooker: on or within the lines of the D
+    const [cx, cy] = d.center;
+    return { x0: Math.max(r, cx - d.radius), y0: cy - d.radius, x1: cx, y1: cy + d.radius,
+      disc: { cx, cy, r: d.radius } };
+  }
   const x1 = ballInHand === 'behind_head_string' ? table.head_string : table.length - r;
   return { x0: r, y0: r, x1, y1: table.width - r };
 }
@@ -270,8 +284,15 @@ export function placementArea(table, ballInHand) {
  * @returns {{x: number, y: number, free: boolean, clamped: boolean}}
  */
 export function placeCue(table, area, balls, x, y) {
-  const cx = Math.min(Math.max(x, area.x0), area.x1);
-  const cy = Math.min(Math.max(y, area.y0), area.y1);
+  let cx = Math.min(Math.max(x, area.x0), area.x1);
+  let cy = Math.min(Math.max(y, area.y0), area.y1);
+  const disc = area.disc;
+  const off = disc ? dist(cx, cy, disc.cx, disc.cy) : 0;
+  if (disc && off > disc.r) { // onto the D's arc, a hair inside
+    const k = (disc.r - 1e-6) / off;
+    cx = disc.cx + (cx - disc.cx) * k;
+    cy = disc.cy + (cy - disc.cy) * k;
+  }
   const r = table.ball_radius;
   let free = true;
   for (const b of balls) {

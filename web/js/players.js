@@ -10,6 +10,7 @@ import { request } from './net.js';
 export const RANKED_GAMES = /** @type {const} */ ([
   ['eight_ball', '8-ball'],
   ['nine_ball', '9-ball'],
+  ['snooker', 'Snooker'],
 ]);
 
 /** @param {string} game */

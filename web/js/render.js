@@ -275,8 +275,23 @@ function drawChalk(ctx, table, view) {
   ctx.moveTo(hx0, hy0);
   ctx.lineTo(hx1, hy1);
   ctx.stroke();
+  for (const arc of table.arcs ?? []) { // snooker's D
+    const a0 = (arc.start_deg * Math.PI) / 180;
+    const a1 = (arc.end_deg * Math.PI) / 180;
+    // Sample the arc through the view (either orientation turns it).
+    ctx.beginPath();
+    for (let k = 0; k <= 48; k++) {
+      const a = a0 + ((a1 - a0) * k) / 48;
+      const [x, y] = view.toScreen(arc.center[0] + arc.radius * Math.cos(a),
+        arc.center[1] + arc.radius * Math.sin(a));
+      if (k === 0) ctx.moveTo(x, y); else ctx.lineTo(x, y);
+    }
+    ctx.stroke();
+  }
   ctx.fillStyle = 'rgba(255,255,255,0.35)';
-  for (const spot of [table.head_spot, table.foot_spot, [L / 2, W / 2]]) {
+  const named = table.style && table.style !== 'pool' ? Object.values(table.spots ?? {}) : [];
+  const spots = named.length ? named : [table.head_spot, table.foot_spot, [L / 2, W / 2]];
+  for (const spot of spots) {
     if (!spot) continue;
     const [x, y] = view.toScreen(spot[0], spot[1]);
     ctx.beginPath();

@@ -47,6 +47,7 @@ const CUE_DOTS = [P, [-P[0], -P[1], -P[2]], [1, 0, 0], [-1, 0, 0], E2, [-E2[0], 
  * @typedef {object} Sprites
  * @property {number} radius ball radius, device pixels
  * @property {number} side side of a cel's square
+ * @property {string} style the table style the balls are painted for
  * @property {Record<number, AnyCanvas[]>} cels id -> the CELS cels of one turn
  * @property {AnyCanvas} shade
  * @property {AnyCanvas} shadow
@@ -81,18 +82,22 @@ export function bodyPoint(u, v, w, theta) {
 
 /**
  * What paints body point b of ball `id`: returns {color: [r, g, b], decal: null | [x, y]}
- * where `decal` are number-disc coordinates in [-1, 1] when b is on a number disc.
+ * where `decal` are number-disc coordinates in [-1, 1] when b is on a number disc. A
+ * snooker ball (`style` "snooker") is its plain colour, as real ones are; the cue ball
+ * keeps its dots on either table.
  * @param {number} id
  * @param {Vec3} b
+ * @param {string} [style] the table's style
  * @returns {{color: number[], decal: [number, number] | null}}
  */
-export function surfaceAt(id, b) {
+export function surfaceAt(id, b, style = 'pool') {
   if (id === CUE) {
     for (const d of CUE_DOTS) {
       if (dot3(b, d) > Math.cos(DOT_ANGLE)) return { color: [200, 30, 30], decal: null };
     }
     return { color: hexToRgb(ballColor(0)), decal: null };
   }
+  if (style !== 'pool') return { color: hexToRgb(ballColor(id, style)), decal: null };
   const sinA = Math.sin(NUMBER_ANGLE);
   for (const { pole, e1 } of NUMBER_POLES) {
     if (dot3(b, pole) > Math.cos(NUMBER_ANGLE)) {
@@ -228,7 +233,7 @@ function roundMask(side, r) {
  * @param {number} decalSize
  * @param {AnyCanvas} mask
  */
-function ballCels(id, side, r, decals, decalSize, mask) {
+function ballCels(id, side, r, decals, decalSize, mask, style = 'pool') {
   /** @type {AnyCanvas[]} */
   const cels = [];
   for (let k = 0; k < CELS; k++) {
@@ -246,7 +251,7 @@ function ballCels(id, side, r, decals, decalSize, mask) {
         if (q > 1) { const n = Math.sqrt(q); u /= n; v /= n; }
         const w = Math.sqrt(Math.max(0, 1 - u * u - v * v));
         const b = bodyPoint(u, v, w, theta);
-        const { color, decal } = surfaceAt(id, b);
+        const { color, decal } = surfaceAt(id, b, style);
         let [cr, cg, cb] = color;
         if (decal && decals[id]) {
           const ink = inkAt(id, decals[id], decalSize, px, py, side, r, theta);
@@ -323,9 +328,10 @@ function shadowSprite(side, r) {
  * Build every ball's cels for a ball radius of `radiusPx` device pixels.
  * @param {number} radiusPx
  * @param {number[]} [ids]
+ * @param {string} [style] the table's style ("pool", "snooker"): how the balls are painted
  * @returns {Sprites}
  */
-export function buildSprites(radiusPx, ids = [...Array(16).keys()]) {
+export function buildSprites(radiusPx, ids = [...Array(16).keys()], style = 'pool') {
   const r = Math.max(4, radiusPx);
   const side = Math.ceil(2 * r + 4);
   const mask = roundMask(side, r);
@@ -333,8 +339,8 @@ export function buildSprites(radiusPx, ids = [...Array(16).keys()]) {
   const decals = numberDecals(decalSize);
   /** @type {Record<number, AnyCanvas[]>} */
   const cels = {};
-  for (const id of ids) cels[id] = ballCels(id, side, r, decals, decalSize, mask);
-  return { radius: r, side, cels, shade: shadeSprite(side, r, mask),
+  for (const id of ids) cels[id] = ballCels(id, side, r, decals, decalSize, mask, style);
+  return { radius: r, side, style, cels, shade: shadeSprite(side, r, mask),
     shadow: shadowSprite(Math.ceil(side * 1.4), r) };
 }
 

@@ -6,7 +6,7 @@
  * sound, ask for a `sync`). Pure: no DOM, no sockets, so it is tested with `node --test`.
  */
 
-import { groupBalls } from './balls.js';
+import { groupBalls, isPractice } from './balls.js';
 import { DEFAULT_LIMITS, DEFAULT_STREAM, readLimits, readStream } from './limits.js';
 import { base64Bytes, decodeMotion } from './track.js';
 
@@ -328,6 +328,7 @@ export function ballsLeft(state, seat) {
 export function pocketedBalls(state) {
   if (!state.match || !state.table) return [];
   const onTable = new Set(state.balls.map((b) => b.id));
+  if (state.match.kind === 'snooker') return []; // the frame's scoreboard tells it
   const all = state.match.kind === 'nine_ball'
     ? [1, 2, 3, 4, 5, 6, 7, 8, 9]
     : [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15];
@@ -343,7 +344,7 @@ export function scoreText(state) {
   if (!m || !m.score) return '';
   const a = playerName(state, 0) ?? 'Player 1';
   const b = playerName(state, 1);
-  if (m.kind === 'practice' || b === null) return `${a} · practice`;
+  if (isPractice(m.kind) || b === null) return `${a} · practice`;
   return `${a} ${m.score[0]} – ${m.score[1]} ${b} (race to ${m.race_to ?? 1})`;
 }
 

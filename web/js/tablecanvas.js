@@ -7,6 +7,7 @@
 import { makeView } from './geometry.js';
 import { buildSprites, context2d } from './sprites.js';
 import { drawTable } from './render.js';
+import { ballIds } from './balls.js';
 
 export class TableCanvas {
   /**
@@ -63,8 +64,10 @@ export class TableCanvas {
       tctx.setTransform(this.dpr, 0, 0, this.dpr, 0, 0);
       drawTable(tctx, table, this.view);
       const rPx = table.ball_radius * this.view.scale * this.dpr;
-      if (!this.sprites || Math.abs(this.sprites.radius - rPx) > this.sprites.radius * 0.08) {
-        this.sprites = buildSprites(rPx);
+      const style = table.style ?? 'pool';
+      if (!this.sprites || this.sprites.style !== style
+        || Math.abs(this.sprites.radius - rPx) > this.sprites.radius * 0.08) {
+        this.sprites = buildSprites(rPx, ballIds(style), style);
       }
     }
     return !!(this.view && this.layer);

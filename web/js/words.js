@@ -43,6 +43,10 @@ export const DECISION_LABELS = {
   spot: 'Spot the ball and shoot',
   shoot: 'Take the shot',
   pass: 'Pass it back',
+  free_ball: 'Take a free ball',
+  play: 'Play from here',
+  play_again: 'Make them play again',
+  replace: 'Replace the balls, they play again',
 };
 
 /**

@@ -33,7 +33,7 @@ class StoredShot:
     game: int  # the game (frame) of the match it was played in, from 1
     seat: int
     shot: dict[str, Any]  # {"angle", "speed", "tip": [side, height]}
-    table: list[float]  # Table(*table)
+    table: list[float | str]  # Table.from_fields(table): a snooker table ends with its style
     balls: dict[str, Any]  # BallSet.to_dict() before the shot
     outcome: dict[str, Any]  # Outcome.to_dict()
     # The stroke the player meant, when it differs from the one played (a computer's

@@ -115,7 +115,8 @@ class Replay {
     }
     const { match } = this;
     this.stream = readStream(match.stream);
-    const game = match.game === 'nine_ball' ? '9-ball' : '8-ball';
+    const game = { nine_ball: '9-ball', snooker: 'Snooker' }[/** @type {string} */ (match.game)]
+      ?? '8-ball';
     setText($('replay-title'), `${(match.players ?? []).join(' vs ')} · ${game}`);
     const won = match.winner_name ? ` · ${match.winner_name} won` : '';
     setText($('replay-score'), `${matchLine(match)}${won}`);

@@ -14,6 +14,7 @@ import {
   initialState, setConnection, isMyTurn, clockRemaining, playerName,
 } from '../../state.js';
 import { clampTip, tipAlongCue } from '../../geometry.js';
+import { isPractice } from '../../balls.js';
 import { attachPointer, AimController } from '../../input.js';
 import {
   $, $input, applyInputLimits, renderHud, renderChat, renderDecision, renderAway, setText,
@@ -27,6 +28,7 @@ import {
 } from './aimlayer.js';
 import { aimWords } from './words.js';
 import { SpinWidget } from './spin.js';
+import { renderFrame, nominationAt } from './snooker.js';
 
 const AIM_INTERVAL = 0.1; // seconds between two `aim` messages (the server asks <= 20/s)
 const REMOTE_AIM_TTL = 6; // seconds a relayed aim stays drawn without news
@@ -316,11 +318,27 @@ export class LiveTable {
         ? TOUCH_LIFT : 0;
       [a.x, a.y] = view.toTable(a.sx, a.sy - lift);
     }
+    if (a.type === 'down' && this.nominateAt(a, sit)) return;
     for (const msg of this.aim.handle(a, sit)) {
       if (msg.type === 'place_cue') this.pendingCue = { x: msg.x, y: msg.y };
       if (msg.type === 'shoot') { this.shotSentAt = now; this.aim.dirty = false; this.coach.done(); }
       this.send(msg);
     }
+  }
+
+  /**
+   * Snooker: a tap on a ball that may be nominated (a colour on, a free ball) nominates it
+   * instead of starting an aim; true when it did.
+   * @param {PointerAction} a
+   * @param {Situation} sit
+   */
+  nominateAt(a, sit) {
+    const choices = /** @type {number[]} */ (/** @type {any} */ (this.state.match)?.nominations ?? []);
+    if (!sit.myTurn || !choices.length || a.x === undefined || a.y === undefined) return false;
+    const ball = nominationAt(sit.balls, choices, sit.table?.ball_radius ?? 0.026, a.x, a.y);
+    if (ball === null) return false;
+    this.send({ type: 'nominate', ball });
+    return true;
   }
 
   /**
@@ -369,6 +387,7 @@ export class LiveTable {
     renderChat(state);
     renderDecision(state, (option) => this.send({ type: 'decide', option,
       game: this.currentGame() }));
+    renderFrame(state, (ball) => this.send({ type: 'nominate', ball }));
   }
 
   /** @param {number} now */
@@ -470,7 +489,7 @@ export class LiveTable {
     setHidden(chip, !words);
     setHidden($('fine-aim'), !(sit.myTurn && aim.mode !== 'placing' && !sit.requiresCall));
     this.coach.show(sit.myTurn && aim.mode !== 'placing');
-    this.hint.offer(sit.myTurn && state.room?.game === 'practice');
+    this.hint.offer(sit.myTurn && isPractice(state.room?.game));
     const shoot = $('hint-shoot');
     const tried = this.triedPower !== null && this.hint.plan !== null && sit.myTurn
       && aim.mode === 'idle';

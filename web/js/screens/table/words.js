@@ -28,9 +28,12 @@ export function aimWords({ feedback, aim, sit, called, time }) {
     return { text: 'Tap the pocket you call for the 8', kind: 'call' };
   }
   if (sit.ballInHand) {
-    return { text: sit.ballInHand === 'behind_head_string'
-      ? 'Ball in hand behind the line: drag the white ball, or aim and shoot'
-      : 'Ball in hand: drag the white ball anywhere, or aim and shoot', kind: 'hand' };
+    const where = {
+      behind_head_string: 'Ball in hand behind the line: drag the white ball, or aim and shoot',
+      in_d: 'Ball in hand in the D: drag the white ball, or aim and shoot',
+    }[sit.ballInHand];
+    return { text: where ?? 'Ball in hand: drag the white ball anywhere, or aim and shoot',
+      kind: 'hand' };
   }
   return null;
 }
@@ -44,6 +47,9 @@ function placingWords(placing, ballInHand) {
   if (!placing.free) return { text: 'Not on another ball', kind: 'refused' };
   if (placing.clamped && ballInHand === 'behind_head_string') {
     return { text: 'Behind the head string only', kind: 'placing' };
+  }
+  if (placing.clamped && ballInHand === 'in_d') {
+    return { text: 'In the D only', kind: 'placing' };
   }
   return { text: 'Let go to put the cue ball here', kind: 'placing' };
 }

@@ -1,0 +1,97 @@
+"""The computer plays legal snooker at every level: its break-off from the D, the ball on
+first, the colour it pots nominated, a free ball taken; every turn goes through the rules'
+own actions (`play_turn`), which refuse an illegal one."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from server.ai import Bot
+from server.ai.play import play_turn
+from server.engine import MotionState, Table
+from server.rules import Game
+from server.rules.snooker_score import COLOUR
+
+SNOOKER = Table.snooker()
+PINK = 20
+
+
+@pytest.mark.parametrize("level", Bot.LEVELS)
+def test_every_level_breaks_off_from_the_d_and_plays_the_ball_on(level: str) -> None:
+    game = Game.new("snooker", ("Ana", "Computer"), breaker=1, seed=4)
+    bot = Bot(level, seed=1)
+    rng = np.random.default_rng(2)
+    turn = bot.plan(game, 1)
+    assert turn.place is not None and SNOOKER.in_d(*turn.place)
+    out, _ = play_turn(game, 1, turn)
+    assert out is not None
+    # The break-off it means (played without its arm's error) is a fair stroke.
+    assert not out.fouls, out.message
+    for _ in range(3):  # and it goes on playing through the rules
+        if game.over:
+            break
+        seat = game.decision.seat if game.decision else game.turn
+        play_turn(game, seat, Bot(level, seed=seat).plan(game, seat), Bot(level), rng)
+
+
+def _pink_on_the_lip() -> Game:
+    """Only the pink near a corner pocket and the cue ball on its line, on a colour."""
+    game = Game.new("snooker", ("Ana", "Computer"), seed=1)
+    balls = game.balls.copy()
+    keep = {0: (0.55, 0.45), PINK: (0.2, 0.2)}
+    for ball in balls.ids.tolist():
+        if ball in keep:
+            balls = balls.with_ball(ball, keep[ball])
+        else:
+            row = balls.index(ball)
+            balls.states[row] = MotionState.POCKETED
+            balls.pockets[row] = 0
+    game.balls = balls
+    game.ball_in_hand = None
+    game.score = replace(game.score, on=COLOUR)  # type: ignore[arg-type]
+    return game
+
+
+def test_the_pro_pots_the_colour_it_nominates() -> None:
+    game = _pink_on_the_lip()
+    turn = Bot("pro", seed=3).plan(game, 0)
+    assert turn.kind == "pot" and turn.target == PINK and turn.nominate == PINK
+    out, _ = play_turn(game, 0, turn)
+    assert out is not None and not out.fouls and game.points == (6, 0)
+
+
+def test_the_computer_takes_a_free_ball() -> None:
+    mid = SNOOKER.width / 2
+    game = Game.new("snooker", ("Ana", "Computer"), seed=1)
+    balls = game.balls.copy()
+    keep = {0: (1.0, mid), 1: (2.0, mid), 19: (1.5, mid), 21: SNOOKER.spots["black"]}
+    for ball in balls.ids.tolist():
+        if ball in keep:
+            balls = balls.with_ball(ball, keep[ball])
+        else:
+            row = balls.index(ball)
+            balls.states[row] = MotionState.POCKETED
+            balls.pockets[row] = 0
+    game.balls, game.ball_in_hand = balls, None
+    angle = math.pi / 2  # straight at the side cushion: no ball hit
+    from server.engine import Shot, simulate
+
+    game.apply(0, simulate(game.table, game.balls, Shot(angle, 0.05)))
+    assert game.decision is not None and game.decision.options[0] == "free_ball"
+    turn = Bot("amateur", seed=1).plan(game, 1)
+    assert turn.decision == "free_ball"
+
+
+def test_show_me_a_shot_on_the_snooker_practice_table() -> None:
+    # The practice table on snooker: one player, its 22 balls; the hint is the top level's
+    # plan, played through the rules.
+    game = Game.new("snooker_practice", ("Pia",), seed=2)
+    assert game.table.style == "snooker" and len(game.balls) == 22
+    turn = Bot("pro", seed=1).plan(game, 0)
+    assert turn.shot is not None
+    out, _ = play_turn(game, 0, turn)
+    assert out is not None and not out.fouls and game.turn == 0
