@@ -10,9 +10,11 @@ What the server judges, plainly:
   is taken as nominated (the referee's "obvious" case). A free ball is nominated the
   same way, else the ball first hit is the free ball.
 - fouls (WPBSA 3.10): no ball hit; a ball not on hit first; a ball not on potted; the cue
-  ball potted (in-off). Each costs the value of the ball on or the highest value of the
-  balls involved, at least 4 (WPBSA 3.11), to the opponent. The engine is 2-D and has no
-  cue: push strokes, jump shots, touching a ball and balls off the table cannot happen.
+  ball potted (in-off); a ball forced off the table (a jumped ball: the cue ball off is
+  played from in-hand, a colour off is re-spotted, a red off stays off, WPBSA 3.6, 3.10).
+  Each costs the value of the ball on or the highest value of the balls involved, at
+  least 4 (WPBSA 3.11), to the opponent. The engine has no cue to touch a ball with:
+  push strokes and touching a ball cannot happen.
 - after a foul the next player plays from where the balls lie or has the offender play
   again (WPBSA 3.10); if the foul leaves them snookered (WPBSA 2.14, `snooker_table`) they
   may take a free ball (WPBSA 3.9).
@@ -106,15 +108,22 @@ def fouls_of(pos: Position, score: FrameScore, facts: ShotFacts) -> tuple[list[F
     """Every foul of the shot (WPBSA 3.10) and the balls potted that were not on."""
     name = pos.shooter
     wrong = [b for b in facts.pocketed if b not in allowed_pots(score, pos.on_table)]
+    wrong += facts.off_table  # forced off the table: WPBSA 3.10, valued as involved (3.11)
     found = []
     first = facts.first_contact
     if first is None:
         found.append(fouls.no_ball_hit(name))
     elif first not in balls_on(score, pos.on_table):
         found.append(fouls.snooker_wrong_first(name, first, on_words(score)))
-    if wrong:
-        found.append(fouls.potted_not_on(name, wrong))
-    if facts.scratch:
+    potted_wrong = [b for b in wrong if b in facts.pocketed]
+    if potted_wrong:
+        found.append(fouls.potted_not_on(name, potted_wrong))
+    if facts.off_table:
+        off = and_list(snooker_ball(b) for b in facts.off_table)
+        found.append(Foul("ball_off_table", f"{name} forced {off} off the table."))
+    if facts.cue_off_table:
+        found.append(fouls.scratch(name, off_table=True))
+    elif facts.scratch:
         found.append(fouls.in_off(name))
     return found, wrong
 
@@ -166,7 +175,7 @@ def respotted(score: FrameScore, potted: Sequence[int], legal: bool) -> tuple[in
 
 def _left(pos: Position, facts: ShotFacts, spot: Sequence[int]) -> list[int]:
     """The object balls on the table once the shot's colours are back."""
-    gone = set(facts.pocketed) - set(spot)
+    gone = (set(facts.pocketed) | set(facts.off_table)) - set(spot)
     return [b for b in pos.object_balls if b not in gone]
 
 
@@ -213,7 +222,8 @@ def _foul(
     seat, opp = pos.turn, pos.opponent
     value = foul_value(score, facts, wrong)
     miss = is_miss(pos, score, facts)
-    r = Ruling(fouls=found, spot=respotted(score, facts.pocketed, legal=False))
+    gone = [*facts.pocketed, *facts.off_table]  # a colour off the table is re-spotted (3.6)
+    r = Ruling(fouls=found, spot=respotted(score, gone, legal=False))
     left = _left(pos, facts, r.spot)
     misses = _with(score.misses, seat, score.misses[seat] + 1 if miss else 0)
     points = _with(score.points, opp, score.points[opp] + value)

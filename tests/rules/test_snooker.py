@@ -12,7 +12,7 @@ from server.rules import Game, IllegalActionError, Match
 from server.rules.snooker_score import COLOUR, FrameScore, remaining, snookers_required
 from server.rules.snooker_table import snookered, spot_point
 
-from .helpers import crafted, hit, pot
+from .helpers import crafted, hit, off, pot
 
 SNOOKER = Table.snooker()
 MID = SNOOKER.width / 2
@@ -292,3 +292,26 @@ def test_a_snooker_frame_round_trips_through_its_stored_form():
     assert back.score == game.score and back.points == game.points
     assert back.decision == game.decision and back.table == game.table
     assert back.replaced is not None
+
+
+def test_a_ball_forced_off_the_table_is_a_foul_colours_come_back_reds_stay_off():
+    # WPBSA 3.10 Fouls (forcing a ball off the table), 3.11 Penalties (the value of the
+    # ball forced off, at least 4), 3.6 Spotting Colours (a colour forced off the table is
+    # re-spotted; a red is not).
+    game = frame({**CUE_IN_BAULK, **RED_OPEN, **ALL_COLOURS})
+    out = game.apply(0, crafted(game.balls, hit(0, 1), off(1, 2), off(PINK, 3)))
+    assert [f.code for f in out.fouls] == ["ball_off_table"]
+    assert out.fouls[0].message == "Ana forced a red and the pink off the table."
+    assert game.points == (0, 6)
+    assert 1 not in game.balls.on_table_ids() and 2 in game.balls.on_table_ids()
+    assert game.balls.position_of(PINK) == SNOOKER.spots["pink"]
+
+
+def test_the_cue_ball_forced_off_the_table_is_played_from_in_hand():
+    # WPBSA 3.10 Fouls (the cue ball forced off the table), 3.4 Play from In-hand.
+    game = frame({**CUE_IN_BAULK, **RED_OPEN, **ALL_COLOURS})
+    out = game.apply(0, crafted(game.balls, hit(0, 1), off(0, 1)))
+    assert [f.code for f in out.fouls] == ["scratch"]
+    assert game.points == (0, 4)
+    game.decide(1, "play")
+    assert game.ball_in_hand == "in_d" and game.turn == 1
