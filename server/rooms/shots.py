@@ -38,7 +38,7 @@ SAVING_NOTICE = 2.0  # s a shot waits for its start to be stored before members 
 SAVING = ErrorMessage(
     code="saving",
     message="Saving the table before the shot is shown; play goes on once it is stored.",
-    ref="shoot",
+    ref=None,  # not a refusal: the shot was taken and will be shown
 )
 
 
