@@ -50,9 +50,13 @@ def test_an_outage_with_lobby_traffic_moves_no_room_and_loses_no_shot(
                 # Ben strikes: the table waits for the shot's start to be stored, and says so
                 notice = loop.run_until_complete(strike_unstored(b, shoot_message(NINE_BALL_FOUL)))
                 assert notice["code"] == "saving"
-                loop.run_until_complete(asyncio.sleep(OUTAGE - 2.0))  # sockets kept alive
+                announced = []  # every process stays announced: liveness waits on no store
+                for _ in range(int(2 * (OUTAGE - 2.0))):
+                    announced.append(presences(redis))
+                    loop.run_until_complete(asyncio.sleep(0.5))  # sockets kept alive
         finally:
             postgres.start()
+        assert set(announced) == {3}, announced
         assert lobby.codes and lobby.codes <= {201, 503}, lobby.codes  # refused, never a 500
         second = result_of(loop.run_until_complete(until(b, "shot_result", timeout=60)))
         seen[2] = second["outcome"]
@@ -68,8 +72,8 @@ def test_an_outage_with_lobby_traffic_moves_no_room_and_loses_no_shot(
         loop.close()
     assert lease_of(redis, room) == lease_before  # never moved, never re-leased
     for server in group.all:
-        assert "owned elsewhere now" not in server.output()
-        assert "took over" not in server.output()
+        for moving in ("owned elsewhere now", "took over", "leases were gone"):
+            assert moving not in server.output()
     assert stored_outcomes(owner, room, seen) == {n: o for n, o in seen.items() if o}
 
 
@@ -163,6 +167,13 @@ def result_of(messages: list[dict[str, Any]]) -> dict[str, Any]:
 def lease_of(redis: RedisServer, room: str) -> str | None:
     with Redis.from_url(redis.url, decode_responses=True) as client:
         return client.get(f"pool:lease:{room}")
+
+
+def presences(redis: RedisServer) -> int:
+    """How many processes are announced in Redis now (their presence key alive)."""
+    with Redis.from_url(redis.url, decode_responses=True) as client:
+        nodes = client.smembers("pool:nodes")
+        return sum(bool(client.exists(f"pool:node:{node}")) for node in nodes)
 
 
 def stored_outcomes(server: Server, room: str, seen: dict[int, Any]) -> dict[int, dict[str, Any]]:
