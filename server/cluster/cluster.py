@@ -3,7 +3,7 @@ other processes, taking over the rooms of a dead process, and handing its own ov
 
 Everything runs on the event loop, in two tasks. The heartbeat (every `heartbeat` s) renews
 the leases of this process's rooms in one script call and announces the process and its
-load, on a Redis connection of its own and within a heartbeat's time: it never waits on the
+load, on a Redis connection of its own and within half a lease: it never waits on the
 store, so a database outage (writes retried, reads waiting their deadline) cannot let this
 process's leases lapse. The upkeep (as often) publishes the lobby summaries that changed,
 registers rooms not registered yet and takes over rooms whose owner stopped announcing
@@ -67,12 +67,14 @@ class Cluster:
             health_check_interval=30,
         )
         # Liveness (renewals, presence) on its own connection: never queued behind a call
-        # or a listing, and given up within a heartbeat (the next one tries again).
+        # or a listing, and given up after half a lease (a later beat tries again while
+        # the lease still holds; the heartbeat is at most half a lease).
+        self.beat_deadline = settings.lease_ttl / 2
         self.liveness: Redis = Redis.from_url(
             settings.redis_url,
             decode_responses=True,
-            socket_timeout=settings.heartbeat,
-            socket_connect_timeout=settings.heartbeat,
+            socket_timeout=self.beat_deadline,
+            socket_connect_timeout=self.beat_deadline,
         )
         self.ttl_ms = int(settings.lease_ttl * 1000)
         self.epochs: dict[str, int] = {}  # rooms this process owns -> their epoch
@@ -400,9 +402,9 @@ class Cluster:
         while True:
             await asyncio.sleep(self.settings.heartbeat)
             try:
-                await asyncio.wait_for(self.keep_alive(), self.settings.heartbeat)
+                await asyncio.wait_for(self.keep_alive(), self.beat_deadline)
             except (RedisError, OSError, TimeoutError) as exc:
-                log.warning("cluster: heartbeat: %s", exc or "no answer within a heartbeat")
+                log.warning("cluster: heartbeat: %s", exc or "no answer within half a lease")
             except Exception:
                 log.exception("cluster: heartbeat failed")
 
