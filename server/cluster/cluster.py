@@ -309,6 +309,8 @@ class Cluster:
                         args=[f"{self.node} {epoch}", exc.stored],
                     )
             if raised:
+                if room_id in self._taking:
+                    self._taking[room_id] = int(raised)
                 return await self._claim(room_id, int(raised), again=False)
             await self._let_go(room_id, epoch)
             raise
@@ -317,6 +319,8 @@ class Cluster:
             raise
 
     async def _let_go(self, room_id: str, epoch: int) -> None:
+        if self._taking.get(room_id) == epoch:  # no longer renewed by the heartbeat
+            del self._taking[room_id]
         with contextlib.suppress(RedisError, OSError):
             await self._release(keys=[keys.lease(room_id)], args=[f"{self.node} {epoch}"])
 
