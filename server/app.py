@@ -27,6 +27,7 @@ from server.api.passkeys import router as passkeys_router
 from server.api.players import router as players_router
 from server.api.quotas import ClientQuotas
 from server.api.rooms import router as rooms_router
+from server.api.unavailable import store_unavailable_handler
 from server.api.ws import router as ws_router
 from server.cluster import Cluster
 from server.config import Settings
@@ -44,7 +45,7 @@ from server.rooms.analyses import AnalysisQueue
 from server.rooms.clock import SYSTEM_CLOCK
 from server.rooms.computer import close_planners, open_planners
 from server.rooms.observer import RoomObserver
-from server.store import Database
+from server.store import Database, StoreUnavailable
 
 CLOSE_RESTART = 1012
 
@@ -111,6 +112,7 @@ def create_app(
     ):
         app.include_router(router)
     app.add_exception_handler(RequestValidationError, validation_handler)
+    app.add_exception_handler(StoreUnavailable, store_unavailable_handler)
     _serve_web(app, settings.web_dir)
     return app
 
@@ -167,7 +169,7 @@ class _Lifespan:
         registry.close_all(CLOSE_RESTART, "server_restart")
         await asyncio.sleep(0)  # let the senders see the close
         if self.cluster is not None:
-            await store.call(lambda _repo: None)  # every room's last write is stored
+            await store.call(lambda _repo: None, wait=True)  # every room's last write is stored
             with contextlib.suppress(Exception):  # Redis gone: leases simply expire
                 await self.cluster.drain()
             await self.cluster.stop()

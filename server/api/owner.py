@@ -23,6 +23,7 @@ from server.players import seat_token
 from server.rooms import ActionError, LiveRoom, RoomRegistry
 from server.rooms.drills import DrillSetup
 from server.rules import PRACTICE_KINDS
+from server.store import StoreUnavailable
 
 from .hints import hint_ask, hint_for
 from .schemas import CreateRoom
@@ -134,7 +135,8 @@ async def forward(
 
 async def room_owner(cluster: Cluster, room_id: str) -> str:
     """The process playing `room_id`: 404 when there is no such room, 503 while it moves
-    (or while Redis cannot say)."""
+    (or while Redis cannot say). A room Redis does not know (it came back empty, and the
+    owner has not renewed yet) is looked up in the store before it is called unknown."""
     try:
         node = await cluster.owner(room_id)
         if node is not None:
@@ -143,6 +145,12 @@ async def room_owner(cluster: Cluster, room_id: str) -> str:
     except Unreachable:
         raise HTTPException(503, MOVING) from None
     if known:
+        raise HTTPException(503, MOVING)
+    try:
+        saved = await cluster.saved(room_id)
+    except StoreUnavailable:
+        raise HTTPException(503, MOVING) from None
+    if saved:
         raise HTTPException(503, MOVING)
     raise HTTPException(404, UNKNOWN_ROOM)
 

@@ -1,12 +1,16 @@
 """One process's part in the cluster: presence, room leases, the shared room list, calls to
 other processes, taking over the rooms of a dead process, and handing its own over.
 
-Everything runs on the event loop. The heartbeat (every `heartbeat` s) renews the leases
-of this process's rooms in one script call, announces the process and its load, publishes
-the lobby summaries that changed, and takes over rooms whose owner stopped announcing
-itself. A room is taken by acquiring its lease (a fresh epoch), claiming it in the store
-with that epoch (older epochs' writes are refused from then on), and only then reading its
-saved state: nothing its old owner wrote before the claim is missed.
+Everything runs on the event loop, in two tasks. The heartbeat (every `heartbeat` s) renews
+the leases of this process's rooms in one script call and announces the process and its
+load, on a Redis connection of its own and within half a lease: it never waits on the
+store, so a database outage (writes retried, reads waiting their deadline) cannot let this
+process's leases lapse. The upkeep (as often) publishes the lobby summaries that changed,
+registers rooms not registered yet and takes over rooms whose owner stopped announcing
+itself: the work that needs the store, and may wait for it. A room is taken by acquiring
+its lease (a fresh epoch), claiming it in the store with that epoch (older epochs' writes
+are refused from then on), and only then reading its saved state: nothing its old owner
+wrote before the claim is missed.
 """
 
 from __future__ import annotations
@@ -62,6 +66,16 @@ class Cluster:
             socket_connect_timeout=settings.rpc_timeout,
             health_check_interval=30,
         )
+        # Liveness (renewals, presence) on its own connection: never queued behind a call
+        # or a listing, and given up after half a lease (a later beat tries again while
+        # the lease still holds; the heartbeat is at most half a lease).
+        self.beat_deadline = settings.lease_ttl / 2
+        self.liveness: Redis = Redis.from_url(
+            settings.redis_url,
+            decode_responses=True,
+            socket_timeout=self.beat_deadline,
+            socket_connect_timeout=self.beat_deadline,
+        )
         self.ttl_ms = int(settings.lease_ttl * 1000)
         self.epochs: dict[str, int] = {}  # rooms this process owns -> their epoch
         self.inbox = Inbox(self.redis, self.node, settings.rpc_timeout)
@@ -71,13 +85,14 @@ class Cluster:
         self.peers: dict[str, str] = {}  # live node id -> public url (last heartbeat)
         self.dead: list[str] = []  # processes that stopped announcing themselves
         self._tasks: list[asyncio.Task[None]] = []
-        self._taking: set[str] = set()
+        self._taking: dict[str, int] = {}  # rooms leased, being claimed -> their epoch
         self._recovering: asyncio.Task[None] | None = None
         self._opening: dict[str, asyncio.Task[None]] = {}  # rooms being registered
         self._clearing = Background()  # the shared entries of rooms closed here
         self._peers_seen = 0.0  # loop time `peers` was last refreshed out of turn
+        self._republish = False  # the next upkeep publishes every summary (Redis forgot)
         self._acquire = self.redis.register_script(scripts.ACQUIRE)
-        self._renew = self.redis.register_script(scripts.RENEW)
+        self._renew = self.liveness.register_script(scripts.RENEW)
         self._release = self.redis.register_script(scripts.RELEASE)
         self._place = self.redis.register_script(scripts.PLACE)
         self._raise = self.redis.register_script(scripts.RAISE)
@@ -98,6 +113,7 @@ class Cluster:
         self._tasks = [
             asyncio.create_task(self.inbox.run(), name="cluster-inbox"),
             asyncio.create_task(self._run_heartbeat(), name="cluster-heartbeat"),
+            asyncio.create_task(self._run_upkeep(), name="cluster-upkeep"),
         ]
         log.info("cluster: node %s at %s", self.node, self.url)
 
@@ -110,6 +126,7 @@ class Cluster:
         await self.match_ids.stop()
         await self.inbox.close()
         await self.redis.aclose()
+        await self.liveness.aclose()
 
     async def drain(self) -> list[str]:
         """Hand every room over now (SIGTERM): the caller has stopped them and flushed the
@@ -195,7 +212,8 @@ class Cluster:
         try:
             restored = await self._adopt(taken, source)
         finally:
-            self._taking.difference_update(taken)
+            for room_id in taken:
+                self._taking.pop(room_id, None)
         if restored:
             log.info("cluster: took over %d rooms (from %s)", len(restored), source or "?")
         return restored
@@ -219,7 +237,7 @@ class Cluster:
                 if source is not None and holder and holder.split()[0] != source:
                     await self.redis.srem(keys.node_rooms(source), room_id)  # not theirs now
                 continue
-            self._taking.add(room_id)
+            self._taking[room_id] = int(epoch)
             taken[room_id] = int(epoch)
         return taken
 
@@ -291,6 +309,8 @@ class Cluster:
                         args=[f"{self.node} {epoch}", exc.stored],
                     )
             if raised:
+                if room_id in self._taking:
+                    self._taking[room_id] = int(raised)
                 return await self._claim(room_id, int(raised), again=False)
             await self._let_go(room_id, epoch)
             raise
@@ -299,6 +319,8 @@ class Cluster:
             raise
 
     async def _let_go(self, room_id: str, epoch: int) -> None:
+        if self._taking.get(room_id) == epoch:  # no longer renewed by the heartbeat
+            del self._taking[room_id]
         with contextlib.suppress(RedisError, OSError):
             await self._release(keys=[keys.lease(room_id)], args=[f"{self.node} {epoch}"])
 
@@ -347,6 +369,12 @@ class Cluster:
             raise Unreachable("redis") from exc
         return str(holder).split()[0] if holder else None
 
+    async def saved(self, room_id: str) -> bool:
+        """Whether the store holds the room: it exists though no process announces it (Redis
+        came back empty and its owner has not renewed yet, or nobody has taken it over
+        yet). `StoreUnavailable` when the store cannot say."""
+        return await self.store.call(lambda repo: repo.room(room_id) is not None)
+
     async def place(self) -> str:
         """The least loaded live process (this one when alone, or when Redis is out of
         reach)."""
@@ -378,20 +406,45 @@ class Cluster:
         while True:
             await asyncio.sleep(self.settings.heartbeat)
             try:
-                await self.beat()
-            except (RedisError, OSError) as exc:
-                log.warning("cluster: heartbeat: %s", exc)
+                await asyncio.wait_for(self.keep_alive(), self.beat_deadline)
+            except (RedisError, OSError, TimeoutError) as exc:
+                log.warning("cluster: heartbeat: %s", exc or "no answer within half a lease")
             except Exception:
                 log.exception("cluster: heartbeat failed")
 
+    async def _run_upkeep(self) -> None:
+        while True:
+            await asyncio.sleep(self.settings.heartbeat)
+            try:
+                await self.upkeep()
+            except (RedisError, OSError) as exc:
+                log.warning("cluster: upkeep: %s", exc)
+            except Exception:
+                log.exception("cluster: upkeep failed")
+
     async def beat(self) -> None:
-        """Renew, announce, publish, take over."""
+        """One heartbeat and one upkeep, in turn (a benchmark's or a test's step)."""
+        await self.keep_alive()
+        await self.upkeep()
+
+    async def keep_alive(self) -> None:
+        """Renew the leases and announce this process: Redis alone, never the store."""
         again = await self._renew_leases()
         if await self._announce():  # Redis forgot us: rooms of processes that died
             self._recover_soon()  # meanwhile are known to the store alone
             again = True
+        self._republish = self._republish or again
+
+    async def upkeep(self) -> None:
+        """Publish, register the rooms not registered yet, take over: what may wait on the
+        store (a room's claim, its snapshot) runs here, not in the heartbeat."""
+        force, self._republish = self._republish, False
         lives = [live for r in self.epochs if (live := self.registry.get(r)) is not None]
-        await self.directory.publish(lives, force=again)
+        try:
+            await self.directory.publish(lives, force=force)
+        except BaseException:
+            self._republish = self._republish or force
+            raise
         for room_id, live in list(self.registry.rooms.items()):
             if room_id not in self.epochs and room_id not in self._taking:
                 with contextlib.suppress(Exception):  # logged by `_created` the first time
@@ -400,8 +453,10 @@ class Cluster:
 
     async def _renew_leases(self) -> bool:
         """True when Redis had lost leases of ours (it restarted): everything shared is
-        written again."""
-        owned = list(self.epochs.items())
+        written again. Rooms being taken over are renewed too: their claim and snapshot
+        may wait on the store longer than a lease."""
+        taking = [(r, e) for r, e in self._taking.items() if r not in self.epochs]
+        owned = [*self.epochs.items(), *taking]
         if not owned:
             return False
         lease_keys = [k for room_id, _ in owned for k in (keys.lease(room_id), keys.epoch(room_id))]
@@ -415,7 +470,8 @@ class Cluster:
                 self.stale(room_id)
         if again:
             log.warning("cluster: %d leases were gone from Redis; taken again", len(again))
-            await self.redis.sadd(keys.node_rooms(self.node), *self.epochs)
+            if self.epochs:
+                await self.liveness.sadd(keys.node_rooms(self.node), *self.epochs)
             self._recover_soon()
         return bool(again)
 
@@ -423,7 +479,7 @@ class Cluster:
         """Presence and load; True when Redis did not know this process any more (it lost
         its data: whatever it held must be rebuilt)."""
         rooms = len(self.registry.rooms)
-        async with self.redis.pipeline(transaction=False) as pipe:
+        async with self.liveness.pipeline(transaction=False) as pipe:
             pipe.set(
                 keys.node(self.node), json.dumps({"url": self.url, "rooms": rooms}), px=self.ttl_ms
             )

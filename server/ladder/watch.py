@@ -5,7 +5,8 @@ same room is a friendly game."""
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING
+from concurrent.futures import Future
+from typing import TYPE_CHECKING, Any
 
 from server.rooms import Room
 from server.rooms.observer import RoomObserver
@@ -31,8 +32,8 @@ class RankedWatch:
         self.done = True
         self.on_over(room)
 
-    def shot_started(self, room: Room, seat: int, shot: Shot, shot_id: int) -> None:
-        self.inner.shot_started(room, seat, shot, shot_id)
+    def shot_started(self, room: Room, seat: int, shot: Shot, shot_id: int) -> Future[Any] | None:
+        return self.inner.shot_started(room, seat, shot, shot_id)
 
     def shot_played(
         self, room: Room, seat: int, shot: Shot, before: BallSet, outcome: Outcome, plan: ShotPlan

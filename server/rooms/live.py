@@ -293,8 +293,8 @@ class LiveRoom:
         shot_id, before = self.room.begin_shot(seat)
         assert seat is not None
         self.timers.cancel_clock()
-        self.observer.shot_started(self.room, seat, shot, shot_id)
-        self.shots.start(seat, shot, shot_id, before)
+        kept = self.observer.shot_started(self.room, seat, shot, shot_id)
+        self.shots.start(seat, shot, shot_id, before, kept)
 
     def shot_shown(
         self, seat: int, shot: Shot, shot_id: int, before: BallSet, outcome: Outcome, plan: ShotPlan

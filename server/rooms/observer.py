@@ -1,12 +1,15 @@
 """Where storage hooks in: a room tells its observer after every shot and change.
 
 The default does nothing. A store implements these methods; they run on the event loop,
-so they must be quick (queue the write and return).
+so they must be quick (queue the write and return). `shot_started` may return the queued
+write's future: the shot's motion is shown only once it is done (a shot shown is a shot
+kept: whoever plays the room next replays it from that stored start).
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Protocol
+from concurrent.futures import Future
+from typing import TYPE_CHECKING, Any, Protocol
 
 from server.engine import BallSet, Shot
 from server.protocol import ShotPlan
@@ -17,8 +20,9 @@ if TYPE_CHECKING:
 
 
 class RoomObserver(Protocol):
-    def shot_started(self, room: Room, seat: int, shot: Shot, shot_id: int) -> None:
-        """A shot was struck (the match is still as before it): save what a restart replays."""
+    def shot_started(self, room: Room, seat: int, shot: Shot, shot_id: int) -> Future[Any] | None:
+        """A shot was struck (the match is still as before it): save what a restart replays.
+        Returns the save's future (the motion waits for it), or None (nothing to wait for)."""
 
     def shot_played(
         self, room: Room, seat: int, shot: Shot, before: BallSet, outcome: Outcome, plan: ShotPlan
@@ -43,8 +47,14 @@ class RoomObserver(Protocol):
 
 
 class NullObserver:
-    def shot_started(self, room: Room, seat: int, shot: Shot, shot_id: int) -> None:
-        pass
+    def shot_started(
+        self,
+        room: Room,  # noqa: ARG002 (the protocol's signature)
+        seat: int,  # noqa: ARG002
+        shot: Shot,  # noqa: ARG002
+        shot_id: int,  # noqa: ARG002
+    ) -> Future[Any] | None:
+        return None  # nothing stored, nothing to wait for
 
     def shot_played(
         self, room: Room, seat: int, shot: Shot, before: BallSet, outcome: Outcome, plan: ShotPlan

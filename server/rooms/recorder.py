@@ -94,13 +94,15 @@ class StoreObserver:
 
     # ---- RoomObserver -----------------------------------------------------------------
 
-    def shot_started(self, room: Room, seat: int, shot: Shot, shot_id: int) -> None:
-        """Save the room as it was before the shot, with the shot: a restart replays it."""
+    def shot_started(self, room: Room, seat: int, shot: Shot, shot_id: int) -> Future[Any] | None:
+        """Save the room as it was before the shot, with the shot: a restart, or the next
+        owner, replays it. The returned future is done once it is stored (and every write
+        queued before it: the shots before this one): the motion waits for it."""
         if not self.active:
-            return
+            return None
         match_id = self.match_id(room)
         text = room_snapshot_json(room, match_id, pending_shot(shot_id, seat, shot))
-        self._write(
+        return self._write(
             room.room_id, lambda repo, e: repo.save_room(room.room_id, text, epoch=e), "save room"
         )
 
@@ -180,14 +182,14 @@ class StoreObserver:
 
     def _write(
         self, room_id: str, fn: Callable[[Repository, int | None], object], what: str
-    ) -> None:
+    ) -> Future[Any]:
         """Queue a write about `room_id` carrying the epoch this process owns it under
-        (cluster mode; None otherwise). A refusal (`StaleOwner`: another process owns the
-        room now) is reported to `stale` on the event loop."""
+        (cluster mode; None otherwise); returns its future. A refusal (`StaleOwner`:
+        another process owns the room now) is reported to `stale` on the event loop."""
         epoch = self._epoch_of(room_id)
-        future = self.db.write(lambda repo: fn(repo, epoch), what)
+        future: Future[Any] = self.db.write(lambda repo: fn(repo, epoch), what)
         if epoch is None:
-            return
+            return future
         loop = asyncio.get_running_loop()
 
         def done(f: Future[Any]) -> None:
@@ -195,6 +197,7 @@ class StoreObserver:
                 loop.call_soon_threadsafe(self._stale, room_id)
 
         future.add_done_callback(done)
+        return future
 
     def _scored(self, room: Room, cause: str, outcome: Outcome) -> None:
         match = room.match

@@ -4,6 +4,13 @@ The whole shot is simulated and judged before anyone sees it (`ShotRunner`); its
 then goes to every member at once and the room waits, at the room's pace, for it to be
 shown before the live room records the outcome and announces it (`ShotEnd`): history,
 replays and the lobby must not tell a shot's outcome before its members have seen it.
+
+A shot shown is a shot kept: its motion goes out only once the shot's start (the room as
+it was, with the shot) is stored, so whoever plays the room next (a restart, another
+process after this one died) replays that same shot, bit for bit, never an older table.
+The store's write runs while the shot is simulated, so it costs nothing when the store
+answers; when it does not (PostgreSQL out of reach) the table waits, and its members are
+told so every `SAVING_NOTICE` seconds, until the write lands.
 """
 
 from __future__ import annotations
@@ -11,11 +18,14 @@ from __future__ import annotations
 import asyncio
 import logging
 import time
-from typing import Protocol
+from concurrent.futures import Future
+from typing import Any, Protocol
 
 from server.engine import BallSet, Shot, ShotResult
 from server.protocol import ShotPlan
+from server.protocol.outbound import ErrorMessage
 from server.rules import Outcome
+from server.store import StaleOwner
 
 from .metrics import StreamMetrics
 from .room import Room
@@ -24,6 +34,12 @@ from .stream import RoomStream
 
 log = logging.getLogger(__name__)
 SLOW_SHOT = 0.25  # s from strike to stream start worth a warning in the log
+SAVING_NOTICE = 2.0  # s a shot waits for its start to be stored before members are told
+SAVING = ErrorMessage(
+    code="saving",
+    message="Saving the table before the shot is shown; play goes on once it is stored.",
+    ref=None,  # not a refusal: the shot was taken and will be shown
+)
 
 
 class ShotEnd(Protocol):
@@ -56,11 +72,14 @@ class ShotPlayer:
         self.end = end
         self._task: asyncio.Task[None] | None = None
 
-    def start(self, seat: int, shot: Shot, shot_id: int, before: BallSet) -> None:
-        """Play a shot the room has begun (`Room.begin_shot`)."""
+    def start(
+        self, seat: int, shot: Shot, shot_id: int, before: BallSet, kept: Future[Any] | None = None
+    ) -> None:
+        """Play a shot the room has begun (`Room.begin_shot`). `kept`: the store's write of
+        its start, which the motion waits for (None: nothing to wait for)."""
         self.stream.hold()  # the spectators' copies wait while the shot is simulated
         self._task = asyncio.get_running_loop().create_task(
-            self._play(seat, shot, shot_id, before, time.perf_counter())
+            self._play(seat, shot, shot_id, before, time.perf_counter(), kept)
         )
 
     def cancel(self) -> None:
@@ -68,12 +87,20 @@ class ShotPlayer:
             self._task.cancel()
 
     async def _play(
-        self, seat: int, shot: Shot, shot_id: int, before: BallSet, started: float
+        self,
+        seat: int,
+        shot: Shot,
+        shot_id: int,
+        before: BallSet,
+        started: float,
+        kept: Future[Any] | None,
     ) -> None:
         judged = await self._judge(shot, shot_id, before, started)
         if judged is None:
             return
         outcome, plan = judged
+        if kept is not None and not await self._kept(kept, shot_id):
+            return
         await self._show(plan, shot_id, started)
         self.end.shot_shown(seat, shot, shot_id, before, outcome, plan)
 
@@ -99,6 +126,21 @@ class ShotPlayer:
         finally:
             self.stream.release()
         return outcome, plan
+
+    async def _kept(self, kept: Future[Any], shot_id: int) -> bool:
+        """Wait until the shot's start is stored, telling the members while it takes long.
+        False: the store refused it (another process owns the room now and replays the
+        shot; this one drops the room). Another failure (the store gave up after its
+        retries) is logged and the shot shown: the table must not stay busy for ever."""
+        stored = asyncio.wrap_future(kept)
+        while not (await asyncio.wait({stored}, timeout=SAVING_NOTICE))[0]:
+            self.stream.relay(SAVING, exclude=None)
+        failure = stored.exception()
+        if isinstance(failure, StaleOwner):
+            return False
+        if failure is not None:
+            log.error("room %s shot %s shown unstored: %s", self.room.room_id, shot_id, failure)
+        return True
 
     def _log_if_slow(
         self, shot: Shot, shot_id: int, result: ShotResult, started: float, prepared: float

@@ -14,7 +14,9 @@ The API (each `Repository` method is one transaction, run through the `Database`
         # connects and migrates, trying again through passing failures for start_retry s
         # batch: queued writes per transaction (default 64 on PostgreSQL, 1 on SQLite)
     db.write(lambda repo: repo.save_room(room_id, text, epoch=e), "save room") -> Future
-    db.submit(fn, retry_for=10.0) -> Future   db.run(fn) -> T   await db.call(fn) -> T
+    db.submit(fn, retry_for=10.0) -> Future   db.run(fn) -> T
+    await db.call(fn) -> T    # StoreUnavailable after read_deadline (10 s) or when unreachable
+    await db.call(fn, wait=True) -> T          # no deadline (a drain's flush)
     db.close()                                # every queued write done first
 
     repo.claim_room(room_id, epoch, owner="") -> None
@@ -48,7 +50,7 @@ Writes that are retried (passing failures) or replayed (a failover) are idempote
 """
 
 from .database import Database
-from .errors import StaleOwner
+from .errors import StaleOwner, StoreUnavailable
 from .records import GameRecord, MatchRecord, PendingShot, RoomSnapshot, ShotRecord
 from .repository import Repository
 
@@ -61,4 +63,5 @@ __all__ = [
     "RoomSnapshot",
     "ShotRecord",
     "StaleOwner",
+    "StoreUnavailable",
 ]

@@ -2,7 +2,9 @@
 
 Why a thread of its own: a write never holds up the event loop (the room only queues it),
 reads from the HTTP API `await` it, and because it is one queue, a read sees every write
-queued before it (the match list shows the shot that just ended). A write that meets a
+queued before it (the match list shows the shot that just ended). A read awaited from the
+loop has a deadline of its own (`read_deadline`): behind writes that wait out an outage it
+gives up with `StoreUnavailable` instead of waiting with them. A write that meets a
 passing failure (another process holds the SQLite file; PostgreSQL restarting or out of
 reach) is tried again with backoff on a new connection while the queue waits, so the
 history is delayed, never lost or reordered. On PostgreSQL the writes queued together
@@ -29,7 +31,7 @@ from pathlib import Path
 from typing import Any, TypeVar
 
 from .backend import database_url, is_transient, make_engine
-from .errors import StaleOwner
+from .errors import StaleOwner, StoreUnavailable
 from .migrate import upgrade
 from .repository import Repository
 
@@ -43,6 +45,7 @@ class _Job:
     future: Future[Any]
     retry_for: float
     batchable: bool
+    until: float | None = None  # store clock time past which it is neither run nor retried
 
 
 class Database:
@@ -50,8 +53,8 @@ class Database:
     many queued writes may share a transaction. `start_retry`: how long opening and
     migrating is tried again through passing failures (two processes starting on one new
     SQLite file: SQLite tells one of them "locked" at once as both turn its journal to
-    WAL) before the process gives up. `sleep` and `clock` are how it waits between tries
-    (a test injects its own)."""
+    WAL) before the process gives up. `read_deadline`: how long `call` waits for an
+    answer. `sleep` and `clock` are how it waits between tries (a test injects its own)."""
 
     def __init__(
         self,
@@ -60,6 +63,7 @@ class Database:
         *,
         batch: int | None = None,
         start_retry: float = 30.0,
+        read_deadline: float = 10.0,
         sleep: Callable[[float], None] = time.sleep,
         clock: Callable[[], float] = time.monotonic,
     ) -> None:
@@ -68,6 +72,7 @@ class Database:
         self.path = Path(self.url.database or "") if self.backend == "sqlite" else None
         self.write_retry = write_retry  # s a queued write is retried through failures
         self.start_retry = start_retry  # s opening and migrating is retried
+        self.read_deadline = read_deadline  # s `call` waits for its answer
         # queued writes run this many to a transaction (PostgreSQL: a commit is a round trip
         # and a flush to disk; a SQLite commit in WAL mode flushes nothing)
         self.batch = batch if batch is not None else (64 if self.backend == "postgresql" else 1)
@@ -145,8 +150,12 @@ class Database:
         jobs = [job for job in batch if job.future.set_running_or_notify_cancel()]
         if len(jobs) == 1:
             job = jobs[0]
+            retry_for = job.retry_for if job.until is None else job.until - self.clock()
+            if retry_for <= 0:  # its caller has given up on it
+                job.future.set_exception(StoreUnavailable("the read's deadline passed"))
+                return
             try:
-                job.future.set_result(self._attempt(job.fn, repo, job.retry_for))
+                job.future.set_result(self._attempt(job.fn, repo, retry_for))
             except BaseException as exc:
                 job.future.set_exception(exc)
             return
@@ -191,17 +200,24 @@ class Database:
                 delay = min(2 * delay, 2.0)
 
     def submit(
-        self, fn: Callable[[Repository], T], retry_for: float = 10.0, batchable: bool = False
+        self,
+        fn: Callable[[Repository], T],
+        retry_for: float = 10.0,
+        batchable: bool = False,
+        *,
+        deadline: float | None = None,
     ) -> Future[T]:
         """Queue `fn(repo)`; returns at once. Through passing failures it is tried again
         for up to `retry_for` seconds. `batchable`: it may share a transaction with the
-        writes queued next to it (each of them a single, idempotent write)."""
+        writes queued next to it (each of them a single, idempotent write). `deadline`:
+        seconds from now past which it is not started, nor tried again (it runs alone)."""
         future: Future[T] = Future()
         if self.closed:
             future.set_exception(RuntimeError("the store is closed"))
             return future
+        until = None if deadline is None else self.clock() + deadline
         self._hand_over()  # this turn's writes first: everything runs in the order made
-        self._jobs.put(_Job(fn, future, retry_for, batchable))
+        self._jobs.put(_Job(fn, future, retry_for, batchable and until is None, until))
         return future
 
     def _later_this_turn(self, job: _Job) -> None:
@@ -247,9 +263,23 @@ class Database:
         """Wait for the result (startup, shutdown, tests; not on the event loop)."""
         return self.submit(fn).result()
 
-    async def call(self, fn: Callable[[Repository], T]) -> T:
-        """Await the result from the event loop."""
-        return await asyncio.wrap_future(self.submit(fn))
+    async def call(self, fn: Callable[[Repository], T], *, wait: bool = False) -> T:
+        """Await the result from the event loop, at most `read_deadline` seconds: later,
+        or when the database cannot be reached, `StoreUnavailable` (the request is
+        dropped if it has not started). `wait`: no deadline (a drain's flush must see
+        every queued write stored)."""
+        if wait:
+            return await asyncio.wrap_future(self.submit(fn, retry_for=self.write_retry))
+        limit = self.read_deadline
+        future = self.submit(fn, retry_for=limit, deadline=limit)
+        try:
+            return await asyncio.wait_for(asyncio.wrap_future(future), limit)
+        except TimeoutError:
+            raise StoreUnavailable(f"no answer within {limit:g} s") from None
+        except Exception as exc:
+            if is_transient(exc):
+                raise StoreUnavailable(_first_line(exc)) from exc
+            raise
 
     def close(self) -> None:
         """Finish every queued job, then close the connection."""

@@ -13,3 +13,9 @@ class StaleOwner(Exception):
         self.room_id = room_id
         self.epoch = epoch
         self.stored = stored
+
+
+class StoreUnavailable(Exception):
+    """A read (or a call that waits for its answer) got none within its deadline: the
+    database is out of reach or busy retrying the writes queued before it. Nothing is
+    known about the answer; the caller says "try again soon" (HTTP 503 `unavailable`)."""

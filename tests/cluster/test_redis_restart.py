@@ -11,6 +11,7 @@ import asyncio
 import time
 
 import pytest
+from redis import Redis
 
 from tests.support.games import NINE_BALL, NINE_BALL_BREAK, shoot_message
 from tests.support.redis import RedisServer
@@ -88,5 +89,39 @@ def test_rooms_play_on_through_a_redis_restart(servers, redis: RedisServer) -> N
         loop.close()
 
 
-def _assert_equal(found: list[str], expected: list[str]) -> None:
+def _assert_equal(found: object, expected: object) -> None:
     assert found == expected
+
+
+def test_a_room_redis_forgot_is_moving_not_unknown(servers, redis: RedisServer) -> None:
+    """Redis came back empty and the room's owner has not renewed its lease yet (here it
+    is paused): the room is in the store, so another process answers `503 room_moving`
+    (the client asks again), never `404 unknown_room` (the client would give up)."""
+    group: ServerSet = servers(2, rack_seed=NINE_BALL, lease_ttl=8.0, heartbeat=1.0)
+    with group.all[0].http() as client:
+        made = client.post("/api/rooms", json={"game": "nine_ball", "shot_clock": 0}).json()
+        room = made["room_id"]
+        assert client.post(f"/api/rooms/{room}/join", json={"name": "Ana"}).status_code == 200
+    owner = group.by_url(made["ws_url"])
+    other = group.others(owner)[0]
+    owner.pause()
+    try:
+        redis.stop()
+        redis.start()  # back, empty
+        eventually(lambda: _assert_equal(_announced(redis), 1))  # the other one is back
+        replies = []
+        with other.http() as client:
+            for _ in range(5):
+                replies.append(client.get(f"/api/rooms/{room}"))
+                time.sleep(0.2)
+    finally:
+        owner.resume()
+    assert [r.status_code for r in replies] == [503] * 5, [r.text for r in replies]
+    assert {r.json()["detail"]["code"] for r in replies} == {"room_moving"}
+    with other.http() as client:  # and once an owner has it again, it is there
+        eventually(lambda: _assert_equal(client.get(f"/api/rooms/{room}").status_code, 200))
+
+
+def _announced(redis: RedisServer) -> int:
+    with Redis.from_url(redis.url) as client:
+        return int(client.scard("pool:nodes"))

@@ -1,17 +1,24 @@
 """PostgreSQL out of reach (restarting, a network cut) delays the history, never loses or
 reorders it: a write is tried again on a new connection until the server is back. The
 store waits through an injected `sleep` and `clock`, so "10 s down" costs the test no ten
-real seconds; the server is really stopped and started again."""
+real seconds; the server is really stopped and started again. A read awaited from the
+event loop does not wait with those writes: it gives up at its own deadline, and the API
+answers `503 unavailable`, never a hang or a 500."""
 
 from __future__ import annotations
 
+import asyncio
 from collections.abc import Iterator
+from pathlib import Path
 
 import pytest
+from fastapi.testclient import TestClient
 from sqlalchemy.exc import OperationalError
 
-from server.store import Database, Repository
+from server.app import create_app
+from server.store import Database, Repository, StoreUnavailable
 from tests.support.postgres import PostgresServer, running_postgres
+from tests.support.settings import settings_in
 
 pytestmark = [pytest.mark.timeout(120), pytest.mark.postgres]
 TABLE = [2.54, 1.27, 0.028575, 0.114, 0.127]
@@ -86,3 +93,40 @@ def test_a_read_gives_up_after_its_limit_and_the_store_goes_on(server: PostgresS
     server.start()
     assert [r.room_id for r in db.run(lambda r: r.rooms())] == ["room"]
     db.close()
+
+
+def test_a_read_behind_writes_waiting_out_an_outage_gives_up_at_its_deadline(
+    server: PostgresServer,
+):
+    db = Database(server.create_database(), read_deadline=0.5)
+    db.run(lambda r: r.save_room("room", '{"n":0}', epoch=1))
+    server.stop("immediate")
+    try:
+        db.write(lambda r: r.save_room("room", '{"n":1}', epoch=1), "save")  # waits it out
+        with pytest.raises(StoreUnavailable):
+            asyncio.run(db.call(lambda r: r.rooms()))
+        with pytest.raises(StoreUnavailable):  # and a read at the head of the queue too
+            asyncio.run(db.call(lambda r: r.match(1)))
+    finally:
+        server.start()
+    assert [r.data for r in asyncio.run(db.call(lambda r: r.rooms()))] == [{"n": 1}]
+    db.close()
+
+
+def test_the_api_answers_503_unavailable_while_postgresql_is_down(
+    server: PostgresServer, tmp_path: Path
+):
+    store = Database(server.create_database(), read_deadline=0.5)
+    app = create_app(settings_in(tmp_path), store=store)
+    with TestClient(app) as client:
+        assert client.get("/api/players/me").status_code == 200  # a profile and its cookie
+        server.stop("immediate")
+        try:
+            replies = [client.get(path) for path in ("/api/players/me", "/api/matches")]
+            replies.append(client.get("/api/matches/1"))
+            replies.append(client.get("/api/leaderboard/nine_ball"))
+        finally:
+            server.start()
+        assert [r.status_code for r in replies] == [503] * 4
+        assert all(r.json()["detail"]["code"] == "unavailable" for r in replies)
+        assert client.get("/api/players/me").status_code == 200  # back
