@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 from typing import Any, Literal
 
 from server.codec import encode
-from server.engine import BallSet, ShotResult, Table
+from server.engine import BallSet, Shot, ShotResult, Table
 from server.protocol import BallRow, StreamFrames, Timed, frame_rows
 from server.protocol.limits import MAX_NAME
 from server.protocol.outbound import (
@@ -77,6 +77,9 @@ class ShotInProgress:
     tick: int = 0  # the tick shown now
     outcome: Outcome | None = None
     shown: tuple[StreamFrames, int] | None = None  # the frame shown now
+    # The stroke meant when it differs from the one struck (the computer's plan before its
+    # arm's error), kept with the shot for the analysis; None: the one struck
+    intended: Shot | None = None
 
     @property
     def balls(self) -> list[BallRow]:
@@ -333,8 +336,9 @@ class Room:
             raise ActionError("match_over", "The match is over; ask for a rematch.")
         return self.match, seat
 
-    def begin_shot(self, seat: int | None) -> tuple[int, BallSet]:
+    def begin_shot(self, seat: int | None, intended: Shot | None = None) -> tuple[int, BallSet]:
         """Check that `seat` may shoot now and mark the table busy; returns (shot id, balls).
+        `intended`: the stroke meant, when it differs from the one struck (the computer's).
 
         The caller simulates the shot from the returned copy, then calls `apply_shot`.
         """
@@ -345,7 +349,7 @@ class Room:
         self.shots_by_seat[seat] += 1
         self.rematch_votes.clear()
         self.shot = ShotInProgress(
-            self.shots_played, seat, match.public_state(), self.resting_balls()
+            self.shots_played, seat, match.public_state(), self.resting_balls(), intended=intended
         )
         return self.shots_played, match.game.balls.copy()
 

@@ -73,6 +73,9 @@ shots = Table(
     Column("played_at", Double, nullable=False),
     Column("engine", Text),  # ENGINE_VERSION that played it (older rows: none)
     Column("motion", LargeBinary),  # zlib of protocol.plan.motion_text (bytea on PostgreSQL)
+    # JSON {angle, speed, tip}: the stroke meant when it differs from `shot` (the
+    # computer's plan before its arm's error); NULL: `shot` is what was meant
+    Column("intended", Text),
     PrimaryKeyConstraint("match_id", "n"),
     UniqueConstraint("match_id", "room_shot", name="shots_room_shot"),
 )
