@@ -136,11 +136,10 @@ class StoreObserver:
             "record shot",
         )
         if room.setup is not None:  # a drill: how it went, for the personal bests
-            d = room.drill
+            d, t = room.drill, room.tries
+            tried = (room.room_id, t.best, d.done, t.cleared > 0, t.tries, t.cleared)
             self._write(
-                room.room_id,
-                lambda repo, _e: DrillRows(repo).set_score(room.room_id, d.score, d.done, d.won),
-                "drill score",
+                room.room_id, lambda repo, _e: DrillRows(repo).set_score(*tried), "drill score"
             )
         self._scored(room, "shot", outcome)
 

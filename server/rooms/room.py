@@ -32,7 +32,7 @@ from server.protocol.outbound import (
 )
 from server.rules import GAME_KINDS, Match, Outcome, RulesError
 
-from .drills import DrillScore, DrillSetup, scored, set_up
+from .drills import RACKED, DrillScore, DrillSetup, DrillTries, after_shot, scored, set_up
 from .errors import ActionError
 from .tokens import hash_token, new_token, token_matches
 
@@ -103,7 +103,8 @@ class Room:
     listed: bool = True  # False: a private table, reached only through its link
     computer: dict[int, str] = field(default_factory=dict)  # seat -> level it plays at
     setup: DrillSetup | None = None  # a drill: the table it starts from (practice only)
-    drill: DrillScore = field(default_factory=DrillScore)  # how the drill went so far
+    drill: DrillScore = field(default_factory=DrillScore)  # how the drill's try went so far
+    tries: DrillTries = field(default_factory=DrillTries)  # and the room's tries of it
     seats: list[Seat | None] = field(init=False)
     match: Match | None = field(default=None, init=False)
     shot: ShotInProgress | None = field(default=None, init=False)
@@ -271,7 +272,7 @@ class Room:
             spectators=self.spectators,
             rematch=sorted(self.rematch_votes),
             abandoned=self.abandoned,
-            drill=None if self.setup is None else drill_info(self.setup, self.drill),
+            drill=None if self.setup is None else drill_info(self.setup, self.drill, self.tries),
         )
 
     def say(self, seat: int | None, text: str, at: float) -> ChatMessage:
@@ -362,7 +363,8 @@ class Room:
         self.shot.ticks = len(result.frames)
         self.shot.outcome = outcome
         if self.setup is not None:
-            self.drill = scored(self.setup, self.drill, before, result, outcome)
+            was, self.drill = self.drill, scored(self.setup, self.drill, before, result, outcome)
+            self.tries = self.tries.after(was, self.drill)
         return outcome
 
     def abort_shot(self) -> None:
@@ -377,6 +379,8 @@ class Room:
 
     def end_shot(self) -> None:
         self.shot = None
+        if self.setup is not None and self.match is not None:
+            after_shot(self.match, self.setup, self.drill)
         self.after_outcome()
 
     def after_outcome(self) -> None:
@@ -412,6 +416,10 @@ class Room:
             raise ActionError("not_practice", "Only a practice table can be racked again.")
         with _rules():
             match.game.rerack()
+        if self.setup is not None and self.setup.kind in RACKED:  # another try of the drill
+            self.tries = self.tries.next(self.drill)
+            self.drill = DrillScore()
+            set_up(match, self.setup)
 
     def check_aim(self, seat: int | None) -> None:
         match, seat = self._require_player(seat)
@@ -454,7 +462,7 @@ class Room:
         return True
 
 
-def drill_info(setup: DrillSetup, score: DrillScore) -> DrillInfo:
+def drill_info(setup: DrillSetup, score: DrillScore, tries: DrillTries) -> DrillInfo:
     """A drill as `state.room.drill` shows it."""
     position = setup.kind == "position"
     return DrillInfo(
@@ -466,6 +474,9 @@ def drill_info(setup: DrillSetup, score: DrillScore) -> DrillInfo:
         score=score.score,
         done=score.done,
         won=score.won,
+        balls=score.lineup_balls() if setup.kind == "lineup" else None,
+        tries=tries.tries,
+        best=tries.best,
     )
 
 

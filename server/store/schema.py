@@ -213,12 +213,17 @@ drills = Table(  # drills' practice rooms (server.rooms.drills) and how each wen
     "drills",
     metadata,
     Column("room_id", Text, primary_key=True),
-    Column("kind", Text, nullable=False),  # position | ghost
+    Column("kind", Text, nullable=False),  # position | ghost | lineup
     Column("match_id", Integer, ForeignKey("matches.id")),  # position: the shot's match
     Column("n", Integer),  # position: the shot
     Column("par", Double),  # position: the pro's chance from there
     Column("created_at", Double, nullable=False),
-    Column("score", Integer),  # position: 1 made, 0 missed; ghost: balls pocketed
+    # position: 1 made, 0 missed; ghost, lineup: the most balls pocketed in one try
+    Column("score", Integer),
     Column("done", Boolean, nullable=False, server_default=false()),  # nothing more to score
-    Column("won", Boolean, nullable=False, server_default=false()),  # ghost: rack cleared
+    Column("won", Boolean, nullable=False, server_default=false()),  # a try was won
+    # ghost, lineup: tries played in the room (Rerack starts another; NULL: one, stored
+    # before they were counted) and how many were won (NULL: `won`)
+    Column("tries", Integer),
+    Column("cleared", Integer),
 )
