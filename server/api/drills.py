@@ -1,6 +1,6 @@
 """HTTP route for drills (`server.rooms.drills`): a practice table set up from an analysed
-shot ("play this position again", the pro's chance there as the par), or a ghost 9-ball
-rack."""
+shot ("play this position again", the pro's chance there as the par), a ghost 9-ball
+rack, or a progressive line-up."""
 
 from __future__ import annotations
 
@@ -25,13 +25,13 @@ router = APIRouter()
 
 
 class DrillAsk(StrictBody):
-    kind: Literal["position", "ghost"] = "position"
+    kind: Literal["position", "ghost", "lineup"] = "position"
     match_id: Annotated[int, Field(ge=1, le=2**62)] | None = None  # position: the match
     n: Annotated[int, Field(ge=1, le=2**31)] | None = None  # position: the shot
 
 
 class DrillCreated(RoomCreated):
-    kind: Literal["position", "ghost"]
+    kind: Literal["position", "ghost", "lineup"]
     match_id: int | None
     n: int | None
     par: float | None  # position: the pro's chance from this table (its trials that pot)
@@ -64,10 +64,14 @@ async def create_drill(
 ) -> dict[str, Any]:
     """A private practice table for a drill; join it next to play. `position`: the stored
     table before shot `n` of analysed match `match_id` (the same ball in hand or not);
-    `ghost`: a 9-ball rack to clear against the ghost. Opened on the process asked.
+    `ghost`: a 9-ball rack to clear against the ghost; `lineup`: balls in a line to clear,
+    one more each rack, until a miss. Opened on the process asked.
     404 `unknown_shot`; 409 `analysis_not_ready` (ask for the analysis first)."""
     quotas.enforce("create", client)
-    setup = DrillSetup(kind="ghost") if body.kind == "ghost" else await _position(body, store)
+    if body.kind == "position":
+        setup = await _position(body, store)
+    else:
+        setup = DrillSetup(kind=body.kind)
     practice = CreateRoom(game="practice", listed=False)
     created = await owner.open_room(registry, cluster, practice, client, base, setup)
     room_id, now = created["room_id"], time.time()

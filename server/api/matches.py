@@ -74,6 +74,9 @@ class StoredShot(BaseModel):
     played_at: float
     replay: str
     engine: str | None  # the engine version that played it (None: not recorded)
+    # the computer's planned stroke before its arm's error, when kept (what the analysis
+    # judges); None: `shot` is what was meant (a person's stroke as sent, or an older row)
+    intended: dict[str, Any] | None = None
     b: list[list[int]]  # the balls on the table before it, as in `state`: [id, x_mm, y_mm, cel]
 
 
@@ -151,6 +154,7 @@ def _shot_row(shot: ShotRecord) -> dict[str, Any]:
         "outcome": shot.outcome,
         "played_at": shot.played_at,
         "engine": shot.engine,
+        "intended": shot.intended,
         "replay": f"/api/matches/{shot.match_id}/shots/{shot.n}/replay",
         "b": _resting_rows(shot.balls),
     }

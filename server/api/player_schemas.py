@@ -60,6 +60,8 @@ class DrillBests(BaseModel):
     ghost_racks: int = 0  # ghost 9-ball racks played
     ghost_cleared: int = 0  # of them, cleared (the ghost beaten)
     ghost_best: int = 0  # the most balls pocketed in one
+    lineup_runs: int = 0  # progressive line-up runs played
+    lineup_best: int = 0  # the most balls pocketed in one
 
 
 class Profile(BaseModel):

@@ -85,20 +85,24 @@ def _set_cookie(response: Response, request: Request, secret: str, secure: bool)
 
 def drill_bests(tries: list[DrillTry]) -> dict[str, int]:
     """The personal bests of the drills: position drills tried, made and the longest run
-    made in a row; ghost 9-ball racks played, cleared and the most balls pocketed in one."""
+    made in a row; ghost 9-ball racks played, cleared and the most balls pocketed in one;
+    line-up runs played and the most balls pocketed in one."""
     positions = [t.score == 1 for t in tries if t.kind == "position" and t.done]
     run = best = 0
     for made in positions:
         run = run + 1 if made else 0
         best = max(best, run)
     ghosts = [t for t in tries if t.kind == "ghost" and t.score is not None]
+    lineups = [t for t in tries if t.kind == "lineup" and t.score is not None]
     return {
         "tries": len(positions),
         "made": sum(positions),
         "best_run": best,
-        "ghost_racks": len(ghosts),
-        "ghost_cleared": sum(t.won for t in ghosts),
+        "ghost_racks": sum(t.tries for t in ghosts),
+        "ghost_cleared": sum(t.cleared for t in ghosts),
         "ghost_best": max((t.score or 0 for t in ghosts), default=0),
+        "lineup_runs": sum(t.tries for t in lineups),
+        "lineup_best": max((t.score or 0 for t in lineups), default=0),
     }
 
 

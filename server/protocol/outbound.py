@@ -72,16 +72,20 @@ class ChatLine(ServerMessage):
 
 class DrillInfo(ServerMessage):
     """A drill's table (`server.rooms.drills`): a position (the analysed shot it comes
-    from, the pro's chance there) or a ghost 9-ball rack, and how it went so far."""
+    from, the pro's chance there), a ghost 9-ball rack or a progressive line-up, and how
+    it went so far."""
 
-    kind: Literal["position", "ghost"]
+    kind: Literal["position", "ghost", "lineup"]
     match: int | None
     n: int | None
     par: float | None
     made: bool | None  # position: the first shot pocketed a ball without a foul (None: not yet)
     score: int  # position: 1 made, 0 missed; ghost: balls pocketed
     done: bool  # nothing more to score (the first shot played; the ghost won, or beaten)
-    won: bool  # ghost: the rack cleared
+    won: bool  # ghost: the rack cleared; lineup: the last rack cleared
+    balls: int | None = None  # lineup: balls in the rack now
+    tries: int = 1  # ghost, lineup: tries at this table (Rerack starts another)
+    best: int = 0  # the most balls pocketed in one of them
 
 
 class RoomInfo(ServerMessage):

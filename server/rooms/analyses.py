@@ -49,8 +49,17 @@ class Answer:
 
 
 def stored_shot(record: ShotRecord) -> StoredShot:
+    """The analysis' view of a stored shot: the computer's intended stroke is judged when it
+    was kept (older rows have none: their stroke as played is judged)."""
     return StoredShot(
-        record.n, record.game, record.seat, record.shot, record.table, record.balls, record.outcome
+        record.n,
+        record.game,
+        record.seat,
+        record.shot,
+        record.table,
+        record.balls,
+        record.outcome,
+        record.intended,
     )
 
 

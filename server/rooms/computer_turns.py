@@ -22,8 +22,9 @@ class Actions(Protocol):
     def changed(self) -> None:
         """The room changed (a decision): clock, `state`, storage."""
 
-    def start_shot(self, seat: int | None, shot: Shot) -> None:
-        """Strike `shot` for `seat`, then simulate and show it."""
+    def start_shot(self, seat: int | None, shot: Shot, intended: Shot | None = None) -> None:
+        """Strike `shot` for `seat`, then simulate and show it; `intended` is the plan
+        before the arm's error (recorded beside the stroke, for the analysis)."""
 
 
 class ComputerTurns:
@@ -78,4 +79,4 @@ class ComputerTurns:
         if turn.nominate is not None:
             room.nominate(seat, turn.nominate)
         if shot is not None:
-            self.actions.start_shot(seat, shot)
+            self.actions.start_shot(seat, shot, turn.shot)

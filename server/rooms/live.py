@@ -288,9 +288,10 @@ class LiveRoom:
             self.computers.wake()
         self.timers.arm_clock(restart)
 
-    def start_shot(self, seat: int | None, shot: Shot) -> None:
-        """Strike `shot` for `seat` (refused with `ActionError`), then simulate and show."""
-        shot_id, before = self.room.begin_shot(seat)
+    def start_shot(self, seat: int | None, shot: Shot, intended: Shot | None = None) -> None:
+        """Strike `shot` for `seat` (refused with `ActionError`), then simulate and show;
+        `intended`: the stroke meant, when it differs (the computer's plan), for the record."""
+        shot_id, before = self.room.begin_shot(seat, intended)
         assert seat is not None
         self.timers.cancel_clock()
         kept = self.observer.shot_started(self.room, seat, shot, shot_id)

@@ -127,18 +127,21 @@ class StoreObserver:
             outcome.to_dict(),
         )
         engine, motion = ENGINE_VERSION, motion_text(plan)
+        meant = room.shot.intended
+        intended = None if meant is None or meant == shot else to_data(meant)
         self._matches[room.room_id].shots += 1
         self._write(
             room.room_id,
-            lambda repo, e: repo.record_shot(*row, engine=engine, motion=motion, epoch=e),
+            lambda repo, e: repo.record_shot(
+                *row, engine=engine, motion=motion, intended=intended, epoch=e
+            ),
             "record shot",
         )
         if room.setup is not None:  # a drill: how it went, for the personal bests
-            d = room.drill
+            d, t = room.drill, room.tries
+            tried = (room.room_id, t.best, d.done, t.cleared > 0, t.tries, t.cleared)
             self._write(
-                room.room_id,
-                lambda repo, _e: DrillRows(repo).set_score(room.room_id, d.score, d.done, d.won),
-                "drill score",
+                room.room_id, lambda repo, _e: DrillRows(repo).set_score(*tried), "drill score"
             )
         self._scored(room, "shot", outcome)
 

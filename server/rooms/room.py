@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 from typing import Any, Literal
 
 from server.codec import encode
-from server.engine import BallSet, ShotResult, Table
+from server.engine import BallSet, Shot, ShotResult, Table
 from server.protocol import BallRow, StreamFrames, Timed, frame_rows
 from server.protocol.limits import MAX_NAME
 from server.protocol.outbound import (
@@ -33,7 +33,7 @@ from server.protocol.outbound import (
 from server.rules import GAME_KINDS, Match, Outcome, RulesError
 from server.rules.kinds import rules_for
 
-from .drills import DrillScore, DrillSetup, scored, set_up
+from .drills import RACKED, DrillScore, DrillSetup, DrillTries, after_shot, scored, set_up
 from .errors import ActionError
 from .tokens import hash_token, new_token, token_matches
 
@@ -78,6 +78,9 @@ class ShotInProgress:
     tick: int = 0  # the tick shown now
     outcome: Outcome | None = None
     shown: tuple[StreamFrames, int] | None = None  # the frame shown now
+    # The stroke meant when it differs from the one struck (the computer's plan before its
+    # arm's error), kept with the shot for the analysis; None: the one struck
+    intended: Shot | None = None
 
     @property
     def balls(self) -> list[BallRow]:
@@ -101,7 +104,8 @@ class Room:
     listed: bool = True  # False: a private table, reached only through its link
     computer: dict[int, str] = field(default_factory=dict)  # seat -> level it plays at
     setup: DrillSetup | None = None  # a drill: the table it starts from (practice only)
-    drill: DrillScore = field(default_factory=DrillScore)  # how the drill went so far
+    drill: DrillScore = field(default_factory=DrillScore)  # how the drill's try went so far
+    tries: DrillTries = field(default_factory=DrillTries)  # and the room's tries of it
     seats: list[Seat | None] = field(init=False)
     match: Match | None = field(default=None, init=False)
     shot: ShotInProgress | None = field(default=None, init=False)
@@ -269,7 +273,7 @@ class Room:
             spectators=self.spectators,
             rematch=sorted(self.rematch_votes),
             abandoned=self.abandoned,
-            drill=None if self.setup is None else drill_info(self.setup, self.drill),
+            drill=None if self.setup is None else drill_info(self.setup, self.drill, self.tries),
         )
 
     def say(self, seat: int | None, text: str, at: float) -> ChatMessage:
@@ -334,8 +338,9 @@ class Room:
             raise ActionError("match_over", "The match is over; ask for a rematch.")
         return self.match, seat
 
-    def begin_shot(self, seat: int | None) -> tuple[int, BallSet]:
+    def begin_shot(self, seat: int | None, intended: Shot | None = None) -> tuple[int, BallSet]:
         """Check that `seat` may shoot now and mark the table busy; returns (shot id, balls).
+        `intended`: the stroke meant, when it differs from the one struck (the computer's).
 
         The caller simulates the shot from the returned copy, then calls `apply_shot`.
         """
@@ -346,7 +351,7 @@ class Room:
         self.shots_by_seat[seat] += 1
         self.rematch_votes.clear()
         self.shot = ShotInProgress(
-            self.shots_played, seat, match.public_state(), self.resting_balls()
+            self.shots_played, seat, match.public_state(), self.resting_balls(), intended=intended
         )
         return self.shots_played, match.game.balls.copy()
 
@@ -359,7 +364,8 @@ class Room:
         self.shot.ticks = len(result.frames)
         self.shot.outcome = outcome
         if self.setup is not None:
-            self.drill = scored(self.setup, self.drill, before, result, outcome)
+            was, self.drill = self.drill, scored(self.setup, self.drill, before, result, outcome)
+            self.tries = self.tries.after(was, self.drill)
         return outcome
 
     def abort_shot(self) -> None:
@@ -374,6 +380,8 @@ class Room:
 
     def end_shot(self) -> None:
         self.shot = None
+        if self.setup is not None and self.match is not None:
+            after_shot(self.match, self.setup, self.drill)
         self.after_outcome()
 
     def after_outcome(self) -> None:
@@ -414,6 +422,10 @@ class Room:
             raise ActionError("not_practice", "Only a practice table can be racked again.")
         with _rules():
             match.game.rerack()
+        if self.setup is not None and self.setup.kind in RACKED:  # another try of the drill
+            self.tries = self.tries.next(self.drill)
+            self.drill = DrillScore()
+            set_up(match, self.setup)
 
     def check_aim(self, seat: int | None) -> None:
         match, seat = self._require_player(seat)
@@ -456,7 +468,7 @@ class Room:
         return True
 
 
-def drill_info(setup: DrillSetup, score: DrillScore) -> DrillInfo:
+def drill_info(setup: DrillSetup, score: DrillScore, tries: DrillTries) -> DrillInfo:
     """A drill as `state.room.drill` shows it."""
     position = setup.kind == "position"
     return DrillInfo(
@@ -468,6 +480,9 @@ def drill_info(setup: DrillSetup, score: DrillScore) -> DrillInfo:
         score=score.score,
         done=score.done,
         won=score.won,
+        balls=score.lineup_balls() if setup.kind == "lineup" else None,
+        tries=tries.tries,
+        best=tries.best,
     )
 
 

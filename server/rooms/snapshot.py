@@ -18,7 +18,7 @@ from server.engine import Shot
 from server.rules import Match
 from server.store import PendingShot
 
-from .drills import DrillScore, DrillSetup
+from .drills import DrillScore, DrillSetup, DrillTries
 from .room import Room, Seat
 
 
@@ -50,6 +50,7 @@ class SavedRoomData:
     shots_by_seat: list[int] | None = None  # None: saved before it was kept
     setup: DrillSetup | None = None  # a drill's table (rooms/drills.py)
     drill: DrillScore | None = None  # and how it went so far
+    tries: DrillTries | None = None  # the drill's tries in the room (None: one)
 
 
 @dataclass(frozen=True)
@@ -100,6 +101,7 @@ def _saved(room: Room, match_id: int | None, pending: PendingShot | None) -> Sav
         shots_by_seat=by_seat,
         setup=room.setup,
         drill=room.drill if room.setup is not None else None,
+        tries=room.tries if room.setup is not None else None,
     )
 
 
@@ -121,6 +123,7 @@ def room_from_snapshot(data: dict[str, Any]) -> SavedRoom:
     room.seats = [None if s is None else Seat(s.name, s.token_hash) for s in saved.seats]
     room.computer = dict(saved.computer)
     room.drill = saved.drill or DrillScore()
+    room.tries = saved.tries or DrillTries()
     for seat in room.computer:  # the computer never leaves
         seat_info = room.seats[seat]
         if seat_info is not None:

@@ -15,14 +15,16 @@ from .schema import drills, player_seats
 @dataclass(frozen=True)
 class DrillTry:
     room_id: str
-    kind: str  # position | ghost
+    kind: str  # position | ghost | lineup
     match_id: int | None
     n: int | None
     par: float | None
     created_at: float
-    score: int | None  # None: not played yet
+    score: int | None  # None: not played yet; ghost, lineup: the best try's balls
     done: bool
     won: bool
+    tries: int = 1  # ghost, lineup: tries played in the room
+    cleared: int = 0  # of them, won
 
 
 class DrillRows:
@@ -42,13 +44,17 @@ class DrillRows:
         with self.repo.transaction() as conn:
             conn.execute(drills.insert().values(**row, created_at=now))
 
-    def set_score(self, room_id: str, score: int, done: bool, won: bool) -> None:
-        """How the drill in `room_id` went so far (a room that is no drill changes nothing)."""
+    def set_score(
+        self, room_id: str, score: int, done: bool, won: bool, tries: int = 1, cleared: int = 0
+    ) -> None:
+        """How the drill in `room_id` went so far (a room that is no drill changes nothing):
+        its best try's `score`, whether the try now is `done`, whether any was `won`, the
+        `tries` played and how many were won (`cleared`)."""
         with self.repo.transaction() as conn:
             conn.execute(
                 drills.update()
                 .where(drills.c.room_id == room_id)
-                .values(score=score, done=done, won=won)
+                .values(score=score, done=done, won=won, tries=tries, cleared=cleared)
             )
 
     def tries_of(self, player_id: str) -> list[DrillTry]:
@@ -68,6 +74,8 @@ class DrillRows:
                 r.score,
                 bool(r.done),
                 bool(r.won),
+                1 if r.tries is None else r.tries,
+                int(bool(r.won)) if r.cleared is None else r.cleared,
             )
             for r in rows
         ]

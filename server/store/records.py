@@ -50,6 +50,9 @@ class ShotRecord:
     played_at: float
     engine: str | None = None  # ENGINE_VERSION that played it (None: before versions)
     motion: str | None = None  # the streamed messages (`protocol.plan.motion_text`)
+    # The stroke meant, when it differs from `shot` (a computer's plan before its arm's
+    # error); None: `shot` is what the player meant (a person's, as sent)
+    intended: dict[str, Any] | None = None
 
 
 @dataclass(frozen=True)

@@ -329,12 +329,14 @@ class Repository:
         engine: str | None = None,
         motion: str | None = None,
         *,
+        intended: dict[str, Any] | None = None,
         epoch: int | None = None,
     ) -> int:
         """Store a shot as number n+1 of its match; a repeat of the same room shot (played
         again after a restart or a failover) changes nothing. `engine` is the engine
         version that played it, `motion` the streamed messages (compressed here, on the
-        store's thread). Returns the shot's number in the match."""
+        store's thread), `intended` the stroke meant when it differs from `shot` (the
+        computer's plan before its arm's error). Returns the shot's number in the match."""
         key = {"key_match": match_id, "key_shot": room_shot}
         with self.transaction() as conn:
             self._fence_match(conn, match_id, epoch)
@@ -357,6 +359,7 @@ class Repository:
                 "motion": None
                 if motion is None
                 else zlib.compress(motion.encode(), MOTION_ZLIB_LEVEL),
+                "intended": None if intended is None else _dump(intended),
             }
             conn.execute(self.sql.add_shot, row)
             return int(conn.execute(self.sql.shot_n, key).scalar_one())
@@ -415,4 +418,5 @@ def _shot_record(r: Row[Any]) -> ShotRecord:
         r.played_at,
         r.engine,
         None if r.motion is None else zlib.decompress(r.motion).decode(),
+        None if r.intended is None else json.loads(r.intended),
     )

@@ -73,6 +73,9 @@ shots = Table(
     Column("played_at", Double, nullable=False),
     Column("engine", Text),  # ENGINE_VERSION that played it (older rows: none)
     Column("motion", LargeBinary),  # zlib of protocol.plan.motion_text (bytea on PostgreSQL)
+    # JSON {angle, speed, tip}: the stroke meant when it differs from `shot` (the
+    # computer's plan before its arm's error); NULL: `shot` is what was meant
+    Column("intended", Text),
     PrimaryKeyConstraint("match_id", "n"),
     UniqueConstraint("match_id", "room_shot", name="shots_room_shot"),
 )
@@ -210,12 +213,17 @@ drills = Table(  # drills' practice rooms (server.rooms.drills) and how each wen
     "drills",
     metadata,
     Column("room_id", Text, primary_key=True),
-    Column("kind", Text, nullable=False),  # position | ghost
+    Column("kind", Text, nullable=False),  # position | ghost | lineup
     Column("match_id", Integer, ForeignKey("matches.id")),  # position: the shot's match
     Column("n", Integer),  # position: the shot
     Column("par", Double),  # position: the pro's chance from there
     Column("created_at", Double, nullable=False),
-    Column("score", Integer),  # position: 1 made, 0 missed; ghost: balls pocketed
+    # position: 1 made, 0 missed; ghost, lineup: the most balls pocketed in one try
+    Column("score", Integer),
     Column("done", Boolean, nullable=False, server_default=false()),  # nothing more to score
-    Column("won", Boolean, nullable=False, server_default=false()),  # ghost: rack cleared
+    Column("won", Boolean, nullable=False, server_default=false()),  # a try was won
+    # ghost, lineup: tries played in the room (Rerack starts another; NULL: one, stored
+    # before they were counted) and how many were won (NULL: `won`)
+    Column("tries", Integer),
+    Column("cleared", Integer),
 )

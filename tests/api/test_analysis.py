@@ -125,6 +125,9 @@ def test_an_analysed_shot_becomes_a_drill_on_its_stored_table(client: TestClient
         "score": 0,
         "done": False,
         "won": False,
+        "balls": None,
+        "tries": 1,
+        "best": 0,
     }
     stored = client.get(f"/api/matches/{MATCH_ID}").json()["shots"][3]["b"]
     assert sorted(map(tuple, state["balls"])) == sorted(map(tuple, stored))

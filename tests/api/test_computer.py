@@ -19,11 +19,15 @@ from fastapi.testclient import TestClient
 from starlette.testclient import WebSocketTestSession
 
 from server.ai import Bot, play_turn
+from server.ai.analysis import positions
 from server.app import create_app
-from server.codec import to_data
+from server.codec import from_data, to_data
+from server.engine import Shot
 from server.rooms import SeedSource
+from server.rooms.analyses import stored_shot
 from server.rooms.computer import THREAD_PLAN_NOTE, plan_turn
 from server.rules import Game
+from server.store import Database
 from tests.support.games import BREAK_MESSAGE, EIGHT_BALL
 from tests.support.settings import settings_in
 
@@ -100,6 +104,32 @@ def test_the_computer_takes_the_second_seat_and_plays_its_turn(
     assert results[-1]["outcome"]["shooter"] == 1  # the computer shot
     assert aims >= 3  # and its cue was seen moving first
     assert not caplog.records  # in its planner process: nothing starved it here
+
+
+def test_the_computers_planned_stroke_is_kept_with_its_shot_and_judged(client: TestClient):
+    """The computer's stroke is its plan plus its arm's error; the room stores the plan
+    beside it, and the analysis judges the plan (as it judges a person's stroke as sent)."""
+    room_id, token = computer_room(client)
+    with client.websocket_connect(f"/ws/rooms/{room_id}?token={token}") as ws:
+        play_until_the_computer_shoots(ws)
+    found = client.get(f"/api/matches?room={room_id}&limit=1").json()["matches"]
+    match_id = found[0]["id"]
+    shots = client.get(f"/api/matches/{match_id}").json()["shots"]
+    ana = [s for s in shots if s["seat"] == 0]
+    computer = [s for s in shots if s["seat"] == 1]
+    assert ana and computer
+    assert all(s["intended"] is None for s in ana)
+    for s in computer:
+        assert set(s["intended"]) == {"angle", "speed", "tip"}
+        assert s["intended"] != s["shot"]  # the club level's arm strays from its plan
+
+    store: Database = client.app.state.store  # type: ignore[attr-defined]
+    records = store.run(lambda repo: repo.shots(match_id))
+    stored = [stored_shot(r) for r in records]
+    judged = {b.stored.n: b.stroke for b in positions("eight_ball", found[0]["players"], stored)}
+    for s in shots:
+        meant = s["shot"] if s["intended"] is None else s["intended"]
+        assert judged[s["n"]] == from_data(Shot, meant)
 
 
 @contextmanager

@@ -1,8 +1,8 @@
 """A finished match's analysis on its replay page: "Analyse" asks for it, the strip shows
 each shot coloured by its verdict, the players' accuracy is shown, and the pro's best shot
 is drawn over the table beside the shot played; a newcomer's mistake played again as a
-drill. Real Chromium, real server (the analysis in its idle-class planner process, as in
-production)."""
+drill; the standard solo drills from the lobby (ghost 9-ball, the line-up). Real
+Chromium, real server (the analysis in its idle-class planner process, as in production)."""
 
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ import httpx
 import pytest
 from playwright.sync_api import expect
 
-from .helpers import aim_and_shoot, apex, create, sit, wait_for, wait_ready
+from .helpers import aim_and_shoot, apex, create, sit, table_point, wait_for, wait_ready
 from .test_history import REPLAY_READY, play_a_short_match
 
 pytestmark = pytest.mark.browser
@@ -129,3 +129,39 @@ def test_ghost_nine_ball_from_the_lobby_keeps_a_personal_best(base_url, new_page
     expect(words).to_contain_text(re.compile(r"of 9 pocketed|Pocketed: [1-9] of 9"))
     page.goto(f"{base_url}/profile")
     expect(page.get_by_test_id("profile-ghost")).to_contain_text("of 1 racks")
+
+
+def test_the_lineup_drill_from_the_lobby_plays_its_first_shot_and_keeps_a_best(base_url, new_page):
+    page = new_page()
+    page.goto(base_url + "/")
+    page.get_by_test_id("lineup-drill").click()
+    page.wait_for_url(re.compile(r"/r/[^/?]+$"))
+    page.get_by_test_id("join").click()
+    wait_ready(page, "aiming")
+    words = page.get_by_test_id("drill-text")
+    expect(words).to_contain_text("Line-up: clear the 3 balls in any order")
+    table = page.evaluate("window.__pool.state.table")
+    length, width = table["length"], table["width"]
+    balls = page.evaluate("window.__pool.balls")
+    line = sorted(b["id"] for b in balls if b["id"] != 0 and abs(b["y"] - width / 2) < 0.005)
+    assert line == [1, 2, 3]
+    # Ball in hand: drag the cue ball above the middle ball, then pot it in the side pocket.
+    cue = page.evaluate("window.__pool.balls.find((b) => b.id === 0)")
+    page.mouse.move(*table_point(page, cue["x"], cue["y"]))
+    page.mouse.down()
+    page.mouse.move(*table_point(page, length / 2, width / 2 + 0.3), steps=8)
+    page.mouse.up()
+    wait_for(
+        page,
+        "([x, y]) => { const c = window.__pool.state.balls.find((b) => b.id === 0);"
+        " return c && Math.abs(c.x - x) < 0.01 && Math.abs(c.y - y) < 0.01; }",
+        [length / 2, width / 2 + 0.3],
+        timeout=5000,
+    )
+    aim_and_shoot(page, (length / 2, width / 2), pull_px=100)
+    wait_for(page, "(d => d.done || d.score > 0)(window.__pool.state.room.drill)")
+    expect(words).to_contain_text(re.compile(r"Pocketed: [1-9]|Run over"))
+    page.get_by_test_id("rerack").click()  # another run
+    wait_for(page, "(d => d.tries === 2 && d.score === 0)(window.__pool.state.room.drill)")
+    page.goto(f"{base_url}/profile")
+    expect(page.get_by_test_id("profile-lineup")).to_contain_text("of 1 runs")

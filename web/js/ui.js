@@ -421,8 +421,8 @@ function renderDrill(state) {
   setHidden($('drill'), !drill);
   if (!drill) return;
   setHidden($('drill-back'), drill.kind !== 'position');
-  if (drill.kind === 'ghost') {
-    setText($('drill-text'), ghostWords(drill));
+  if (drill.kind === 'ghost' || drill.kind === 'lineup') {
+    setText($('drill-text'), drill.kind === 'ghost' ? ghostWords(drill) : lineupWords(drill));
     $('drill-text').dataset.made = drill.done ? String(drill.won) : '';
     return;
   }
@@ -442,8 +442,20 @@ function renderDrill(state) {
  */
 function ghostWords(drill) {
   if (drill.won) return `You beat the ghost: all ${drill.score} balls pocketed!`;
-  if (drill.done) return `The ghost wins the rack: ${drill.score} of 9 pocketed. Another rack: Ghost 9-ball drill in the lobby.`;
+  if (drill.done) return `The ghost wins the rack: ${drill.score} of 9 pocketed. Another rack: Rerack.`;
   return `Ghost 9-ball: hit the lowest ball first and pocket a ball every shot; a miss gives the ghost the rack. Pocketed: ${drill.score} of 9.`;
+}
+
+/**
+ * The progressive line-up's words: the rule, the rack's balls, the run's score and the
+ * table's best.
+ * @param {{score: number, done: boolean, won: boolean, balls?: number | null, best?: number}} drill
+ */
+function lineupWords(drill) {
+  const best = drill.best ? ` Best here: ${drill.best}.` : '';
+  if (drill.won) return `Line-up cleared to the last rack: ${drill.score} balls pocketed!${best}`;
+  if (drill.done) return `Run over: ${drill.score} balls pocketed.${best} Another run: Rerack.`;
+  return `Line-up: clear the ${drill.balls} balls in any order, each rack one more; a miss ends the run. Pocketed: ${drill.score}.${best}`;
 }
 
 /**

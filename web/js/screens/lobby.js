@@ -16,6 +16,18 @@ import { bindNameField, settleName } from '../identity.js';
 const REFRESH_EVERY = 3000; // ms between two refreshes of the lists
 const HISTORY_SHOWN = 10; // finished matches listed
 
+/** The standard solo drills' buttons: each opens its drill's table (`POST /api/drills`). */
+function wireDrills() {
+  for (const [id, kind] of [['ghost-drill', 'ghost'], ['lineup-drill', 'lineup']]) {
+    $(id).addEventListener('click', async () => {
+      try {
+        const drill = await request('POST', '/api/drills', { kind });
+        location.assign(drill.url);
+      } catch (e) { $('lobby-error').textContent = e instanceof Error ? e.message : String(e); }
+    });
+  }
+}
+
 export function startLobby() {
   $('lobby').hidden = false;
   // The name field's length follows the server's limit: the defaults until it answers.
@@ -101,12 +113,7 @@ export function startLobby() {
     opponent: $select('computer-level').value || 'beginner' }));
   $('practice').addEventListener('click', () => openTable({ game: 'practice', raceTo: 1,
     listed: true }));
-  $('ghost-drill').addEventListener('click', async () => {
-    try {
-      const drill = await request('POST', '/api/drills', { kind: 'ghost' });
-      location.assign(drill.url);
-    } catch (e) { $('lobby-error').textContent = e instanceof Error ? e.message : String(e); }
-  });
+  wireDrills();
   const refresh = async () => {
     try {
       const { rooms } = await api.listRooms();

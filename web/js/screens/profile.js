@@ -144,10 +144,11 @@ const CHART_H = 80;
 /**
  * The player's accuracy (0-100) in their analysed recent matches, oldest to newest, as a
  * small line chart (a match not analysed is left out).
- * With the personal bests of the position drills under it.
+ * With the personal bests of the drills under it.
  * @param {any[]} matches newest first
  * @param {{tries: number, made: number, best_run: number, ghost_racks?: number,
- *   ghost_cleared?: number, ghost_best?: number} | null | undefined} drills
+ *   ghost_cleared?: number, ghost_best?: number, lineup_runs?: number,
+ *   lineup_best?: number} | null | undefined} drills
  */
 function accuracyPanel(matches, drills) {
   const panel = el('section', { class: 'panel' });
@@ -160,6 +161,10 @@ function accuracyPanel(matches, drills) {
     panel.append(el('p', { class: 'small', 'data-testid': 'profile-ghost' },
       `Ghost 9-ball: best ${drills.ghost_best} of 9 pocketed; the ghost beaten ${
         drills.ghost_cleared} of ${drills.ghost_racks} racks.`));
+  }
+  if (drills?.lineup_runs) {
+    panel.append(el('p', { class: 'small', 'data-testid': 'profile-lineup' },
+      `Line-up: best run ${drills.lineup_best} balls pocketed, of ${drills.lineup_runs} runs.`));
   }
   const points = matches.filter((m) => typeof m.accuracy === 'number').reverse()
     .map((m) => /** @type {number} */ (m.accuracy));
