@@ -7,7 +7,7 @@
 
 import { castGuide, squirt, objectPath, placementArea } from '../../geometry.js';
 import {
-  drawGuide, drawCue, drawPlacement, drawPocketCall, drawPowerMeter, drawClockRing,
+  drawGuide, drawPath, drawCue, drawPlacement, drawPocketCall, drawPowerMeter, drawClockRing,
 } from '../../render.js';
 import { URGENT_AT } from '../../ui.js';
 
@@ -43,6 +43,20 @@ function drawGuideLine({ ctx, view }, table, balls, cue, guide) {
 }
 
 /**
+ * A guide that may bend (a raised cue's swerve): the curve up to its last straight run,
+ * then that run as any guide.
+ * @param {Frame} frame
+ * @param {any} table
+ * @param {BallList} balls
+ * @param {import('../../swerve.js').CurvedGuide} curved
+ * @returns {ObjectGuide | null}
+ */
+function drawCurvedGuide(frame, table, balls, { bends, from, guide }) {
+  if (bends.length) drawPath(frame.ctx, frame.view, table, [...bends, from]);
+  return drawGuideLine(frame, table, balls, from, guide);
+}
+
+/**
  * Where the object ball's guide line ends: the rail, a ball or the pocket it drops in.
  * @param {any} table
  * @param {BallList} balls
@@ -64,11 +78,11 @@ function objectGuide(table, balls, guide) {
  * @param {BallList} balls
  * @param {[number, number]} cue
  * @param {import('../../input.js').AimController} aim
- * @param {number} massRatio the server's `limits.cue_mass_ratio`
+ * @param {import('../../limits.js').Limits} limits the server's limits
  * @returns {ObjectGuide | null}
  */
-export function drawOwnAim(frame, table, balls, cue, aim, massRatio) {
-  const path = drawGuideLine(frame, table, balls, cue, aim.guide(table, balls, cue, massRatio));
+export function drawOwnAim(frame, table, balls, cue, aim, limits) {
+  const path = drawCurvedGuide(frame, table, balls, aim.guide(table, balls, cue, limits));
   drawCue(frame.ctx, frame.view, table, cue, aim.angle, aim.power);
   if (aim.mode === 'pulling') drawPowerMeter(frame.ctx, frame.view, cue, aim.power);
   return path;

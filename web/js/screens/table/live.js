@@ -465,7 +465,7 @@ export class LiveTable {
   drawAim(frame, sit, cue, now) {
     const { state } = this;
     const ratio = this.limits.cue_mass_ratio;
-    if (sit.myTurn) return drawOwnAim(frame, state.table, sit.balls, cue, this.aim, ratio);
+    if (sit.myTurn) return drawOwnAim(frame, state.table, sit.balls, cue, this.aim, this.limits);
     const remote = state.aim;
     if (remote && remote.seat !== state.me.seat && now - remote.at < REMOTE_AIM_TTL) {
       return drawRemoteAim(frame, state.table, sit.balls, cue, remote, ratio);
