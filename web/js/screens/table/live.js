@@ -28,6 +28,7 @@ import {
 } from './aimlayer.js';
 import { aimWords } from './words.js';
 import { SpinWidget } from './spin.js';
+import { elevationControl } from './elevation.js';
 import { renderFrame, nominationAt } from './snooker.js';
 
 const AIM_INTERVAL = 0.1; // seconds between two `aim` messages (the server asks <= 20/s)
@@ -504,6 +505,7 @@ export class LiveTable {
     if (canvas.style.cursor !== cursor) canvas.style.cursor = cursor;
     const tip = this.shownTip(sit, now);
     this.spin.show(tip, tip !== aim.tip);
+    this.elevation.show(aim.tip[1]);
   }
 
   /**
@@ -530,28 +532,6 @@ export class LiveTable {
         || now - state.aim.at > REMOTE_AIM_TTL || state.phase !== 'aiming') return this.aim.tip;
     return state.aim.tip;
   }
-}
-
-/**
- * The elevation slider (keyboard: arrows, Home/End; touch: drag), in degrees on screen
- * and radians to `onPick`; `set` moves it back (a shot without "keep spin").
- * @param {(radians: number) => void} onPick
- */
-function elevationControl(onPick) {
-  const input = $input('elevation');
-  const out = $('elevation-out');
-  const show = () => {
-    setText(out, `${input.value}°`);
-    onPick((Number(input.value) * Math.PI) / 180);
-  };
-  input.addEventListener('input', show);
-  return {
-    /** @param {number} degrees */
-    set(degrees) {
-      input.value = String(degrees);
-      show();
-    },
-  };
 }
 
 /** The "keep spin" box: remembered; unticked, the spin goes back to centre after a shot. */
