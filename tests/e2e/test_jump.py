@@ -88,6 +88,12 @@ def test_a_player_jumps_over_a_blocker_and_the_page_shows_the_hop(base_url, new_
     ana.mouse.down()
     ana.mouse.move(*table_point(ana, target[0], target[1] + PULL), steps=10)
     wait_for(ana, "window.__pool.aim.mode === 'pulling' && window.__pool.objectGuide === null")
+    # The watcher is sent the raised aim and draws its guide over the blocker too.
+    relayed = "window.__pool.state.aim && window.__pool.state.aim.power > 0.4"
+    wait_for(watcher, f"{relayed} && window.__pool.objectGuide === null")
+    assert watcher.evaluate("window.__pool.state.aim.elevation") == pytest.approx(
+        math.radians(DEGREES), abs=1e-6
+    )
     ana.mouse.up()
     wait_for(watcher, "window.__pool.playing", timeout=10_000)
     wait_for(watcher, "!window.__pool.playing", timeout=30_000)

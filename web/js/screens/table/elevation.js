@@ -22,8 +22,9 @@ const STEP = 1; // degrees per arrow press (x10 with Shift)
 /**
  * @typedef {object} ElevationControl
  * @property {(degrees: number) => void} set move the control (a tried hint, a new shot)
- * @property {(tipHeight: number) => void} show draw the cue at the control's angle with
- *   the tip `tipHeight` of the radius above the centre, seen along the cue
+ * @property {(tipHeight: number, remote: number | null) => void} show draw the cue at the
+ *   control's angle (or at `remote` degrees, another player's cue) with the tip
+ *   `tipHeight` of the radius above the centre, seen along the cue
  */
 
 /**
@@ -63,7 +64,10 @@ export function elevationControl(onPick) {
   });
   return {
     set,
-    show: (tipHeight) => cue.draw(Number(input.value), tipHeight),
+    show: (tipHeight, remote) => {
+      cue.draw(remote ?? Number(input.value), tipHeight);
+      view.classList.toggle('remote', remote !== null);
+    },
   };
 }
 
