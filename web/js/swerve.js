@@ -25,7 +25,7 @@ export const PHYSICS = Object.freeze({
 });
 
 const SLIDE_SAMPLES = 24; // points along the sliding parabola
-const FLIGHT_SAMPLES = 12; // points along a hop (the height, for passing over balls)
+const FLIGHT_SAMPLES = 24; // points along a hop (its height: whether it comes down on a ball)
 const EPS = 1e-9;
 
 /**
