@@ -59,8 +59,10 @@ export class TableAudio {
   }
 
   /**
-   * Play a table event: kind "strike" | "ball" | "cushion" | "jaw" | "pocket" | "land" (a
-   * flying ball back on the slate: a duller thump than a rail's).
+   * Play a table event: kind "strike" | "jump" (a raised cue's strike that sends the ball
+   * off the slate: a sharper, brighter click with the slate's knock under it) | "ball" |
+   * "cushion" | "jaw" | "pocket" | "land" (a flying ball back on the slate: a duller thump
+   * than a rail's).
    * @param {string} kind
    * @param {number} speed impact speed, m/s
    */
@@ -71,6 +73,7 @@ export class TableAudio {
     if (++this.recent > 6) return;
     switch (kind) {
       case 'strike': this.strike(now, impactGain(speed, 9)); break;
+      case 'jump': this.jump(now, impactGain(speed, 9)); break;
       case 'ball': this.click(now, impactGain(speed, 5)); break;
       case 'cushion': case 'jaw': this.thump(now, impactGain(speed, 4)); break;
       case 'pocket': this.drop(now, 0.6 + 0.4 * impactGain(speed, 3)); break;
@@ -150,6 +153,17 @@ export class TableAudio {
   strike(t, g) {
     this.tone(t, 420, 180, 0.5 * g + 0.05, 0.05, 'triangle');
     this.burst(t, 'bandpass', 2200, 1.2, 0.35 * g + 0.03, 0.03);
+  }
+
+  /**
+   * A jump's strike: the tip's sharp crack and, under it, the ball knocking the slate.
+   * @param {number} t
+   * @param {number} g
+   */
+  jump(t, g) {
+    this.burst(t, 'highpass', 4500, 0.9, 0.45 * g + 0.08, 0.012);
+    this.tone(t, 2400, 1500, 0.3 * g + 0.04, 0.02, 'triangle');
+    this.tone(t + 0.004, 160, 90, 0.35 * g + 0.05, 0.05, 'sine');
   }
 
   /**

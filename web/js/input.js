@@ -15,6 +15,7 @@ import {
   castGuide, squirt, pullPower, speedFromPower, placeCue, placementArea, pocketAt, dist, clampTip,
   tipSeenLevel,
 } from './geometry.js';
+import { curvedGuide } from './swerve.js';
 
 /**
  * @typedef {object} PointerAction
@@ -65,6 +66,8 @@ export function attachPointer(canvas, queue) {
 export const MAX_PULL = 0.4;
 /** Below this power a release is a cancel. */
 export const MIN_POWER = 0.03;
+/** The power a raised cue's curved guide is drawn for until the player pulls back. */
+export const GUIDE_POWER = 0.35;
 
 /**
  * What the player is told after an action that did nothing on purpose (a cancelled shot,
@@ -231,14 +234,16 @@ export class AimController {
   /**
    * The `shoot` message for the aim now, within the server's limits.
    * @param {import('./limits.js').Limits} limits
+   * @param {number} [power] the power to shoot at (the pulled one unless given)
+   * @returns {{type: string, angle: number, speed: number, tip: number[], elevation?: number}}
    */
-  shot(limits) {
+  shot(limits, power = this.power) {
     const { max_speed: maxSpeed, max_tip: maxTip } = limits;
     const tip = clampTip(this.tip[0], this.tip[1], maxTip);
     const rounded = tip.map(round6);
     const level = Math.hypot(rounded[0], rounded[1]) <= maxTip ? rounded : tip.map(trunc6);
     const out = { type: 'shoot', angle: round6(this.angle),
-      speed: Math.min(maxSpeed, round6(speedFromPower(this.power, maxSpeed))), tip: level };
+      speed: Math.min(maxSpeed, round6(speedFromPower(power, maxSpeed))), tip: level };
     const elevation = Math.min(Math.max(trunc6(this.elevation), 0), limits.max_elevation);
     if (elevation > 0) {
       // A raised cue: the server names the tip as seen from behind at the bed's level (a
@@ -250,14 +255,25 @@ export class AimController {
   }
 
   /**
-   * The guide for the current aim from `cue`, along the path side spin squirts it to.
+   * The guide for the current aim from `cue`: along the path side spin squirts it to, and
+   * with a raised cue along the curve the engine's sliding friction gives it (swerve,
+   * massé: `curvedGuide`). The curve depends on the speed: the power pulled, else
+   * GUIDE_POWER until the player pulls back.
    * @param {any} table
    * @param {{id: number, x: number, y: number}[]} balls
    * @param {[number, number]} cue
-   * @param {number} massRatio the server's `limits.cue_mass_ratio`
+   * @param {import('./limits.js').Limits} limits the server's limits
+   * @returns {import('./swerve.js').CurvedGuide}
    */
-  guide(table, balls, cue, massRatio) {
-    return castGuide(table, balls, cue, this.angle + squirt(this.tip[0], massRatio));
+  guide(table, balls, cue, limits) {
+    if (this.elevation <= 0) {
+      const angle = this.angle + squirt(this.tip[0], limits.cue_mass_ratio);
+      return { bends: [], from: cue, guide: castGuide(table, balls, cue, angle) };
+    }
+    const power = this.power >= MIN_POWER ? this.power : GUIDE_POWER;
+    const stroke = this.shot(limits, power);
+    return curvedGuide(table, balls, cue, { ...stroke, elevation: stroke.elevation ?? 0 },
+      limits.cue_mass_ratio);
   }
 }
 

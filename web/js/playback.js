@@ -16,7 +16,7 @@
  * after the strike of the shot being shown (or the last one shown, until the next starts).
  */
 
-import { motionAt } from './track.js';
+import { motionAt, soundHeard } from './track.js';
 
 /** @typedef {import('./track.js').Motion} Motion */
 /** @typedef {{x: number, y: number, z?: number, cel: number, heading: number, speed: number}} ShownBall */
@@ -284,7 +284,7 @@ export class ShotPlayback {
     while (this.nextSound < motion.sounds.length
            && motion.sounds[this.nextSound].t <= this.time + 1e-9) {
       const s = motion.sounds[this.nextSound++];
-      this.onSound(s.kind, s.speed);
+      this.onSound(soundHeard(motion, s), s.speed);
     }
   }
 

@@ -343,6 +343,29 @@ export function drawSinking(ctx, view, sprites, sink, now, scaleToCss) {
 }
 
 /**
+ * The curved part of a guide (a raised cue's swerve), in the guide line's dashes.
+ * @param {Ctx} ctx
+ * @param {View} view
+ * @param {Table} table
+ * @param {Vec[]} points table metres, in order
+ */
+export function drawPath(ctx, view, table, points) {
+  const s = view.scale;
+  const r = table.ball_radius * s;
+  ctx.save();
+  ctx.lineWidth = Math.max(1, s * 0.003);
+  ctx.strokeStyle = 'rgba(255,255,255,0.75)';
+  ctx.setLineDash([Math.max(3, r * 0.5), Math.max(3, r * 0.4)]);
+  ctx.beginPath();
+  points.forEach(([x, y], i) => {
+    const [px, py] = view.toScreen(x, y);
+    if (i === 0) ctx.moveTo(px, py); else ctx.lineTo(px, py);
+  });
+  ctx.stroke();
+  ctx.restore();
+}
+
+/**
  * The guide line, the ghost ball and the object ball's likely path.
  * @param {Ctx} ctx
  * @param {View} view

@@ -41,8 +41,9 @@ const MM = 1000;
  * @property {string} outcome last outcome in words
  * @property {any} lastResult
  * @property {{seat: number | null, name: string, text: string}[]} chat
- * @property {{seat: number, angle: number, power: number, tip: number[], at: number} | null} aim
- *   relayed aim of the player at the table
+ * @property {{seat: number, angle: number, power: number, tip: number[], at: number,
+ *   elevation?: number} | null} aim relayed aim of the player at the table (a raised cue's
+ *   `elevation`, its tip then as `shoot` names it)
  * @property {{code: string, message: string, ref: string | null, at: number} | null} error
  */
 
@@ -210,7 +211,7 @@ function onShotResult(s, msg, _now, effects) {
 /** @type {Handler} */
 function onAim(s, msg, now) {
   s.aim = { seat: msg.seat, angle: msg.angle, power: msg.power ?? 0,
-    tip: msg.tip ?? [0, 0], at: now };
+    tip: msg.tip ?? [0, 0], at: now, ...(msg.elevation > 0 ? { elevation: msg.elevation } : {}) };
 }
 
 /** @type {Handler} */

@@ -48,6 +48,26 @@ export const SOUND_KINDS = ['strike', 'ball', 'cushion', 'jaw', 'pocket', 'land'
 /** @typedef {{id: number, x: number, y: number, z: number, cel: number, heading: number, speed: number}} Pose */
 
 /**
+ * What a sound is heard as: a strike that sends its ball off the slate (a raised cue's
+ * jump or hop: the ball is above the bed before its first landing) is a 'jump', the sharp
+ * click of the tip driving the ball into the slate; every other sound keeps its kind.
+ * @param {Motion} motion
+ * @param {Sound} sound
+ * @returns {string}
+ */
+export function soundHeard(motion, sound) {
+  if (sound.kind !== 'strike') return sound.kind;
+  const id = sound.ids[0];
+  const landing = motion.sounds.find((s) => s.kind === 'land' && s.ids[0] === id);
+  const track = motion.tracks.find((tr) => tr.id === id);
+  if (!landing || !track) return sound.kind;
+  for (let k = 0; k < track.t.length && track.t[k] <= landing.t; k++) {
+    if (track.z[k] > 0) return 'jump';
+  }
+  return sound.kind;
+}
+
+/**
  * Decode a `motion` message.
  * @param {ArrayBuffer | Uint8Array} data
  * @returns {Motion}

@@ -185,3 +185,13 @@ test('groups as the rules send them (a list by seat) and a notice beside the out
   assert.equal(s.outcome, 'Ben fouls. Ana declares a push out.');
 });
 
+
+test("a raised cue's relayed aim keeps its elevation (a level one has none)", () => {
+  const { s } = run([
+    [stateMsg(1)],
+    [{ type: 'aim', seat: 1, angle: 1.5, power: 0.3, tip: [0.2, 0.6], elevation: 0.7 }, 3],
+  ]);
+  assert.equal(s.aim?.elevation, 0.7);
+  const level = run([[stateMsg(1)], [{ type: 'aim', seat: 1, angle: 1.5, power: 0.3, tip: [0, 0.1] }, 4]]);
+  assert.equal(level.s.aim && 'elevation' in level.s.aim, false);
+});

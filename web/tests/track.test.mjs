@@ -1,6 +1,8 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { decodeMotion, trackAt, motionAt, celOf, base64Bytes } from '../js/track.js';
+import {
+  decodeMotion, trackAt, motionAt, celOf, base64Bytes, soundHeard,
+} from '../js/track.js';
 import { encodeMotion } from './motion.mjs';
 
 const R = 0.028575;
@@ -149,4 +151,17 @@ test('version 2: pocket 254 is a ball that flies off the table at its last knot'
   assert.equal(cue.pocket, null);
   assert.notEqual(trackAt(cue, 0.1), null);
   assert.equal(trackAt(cue, 0.2), null);
+});
+
+test("a strike that sends its ball off the slate is heard as the jump's click", () => {
+  const hop = decodeMotion(hexBytes(HOP_HEX));
+  const strike = hop.sounds[0];
+  const land = { t: 0.1, kind: 'land', ids: [0], speed: 0.5, target: -1 };
+  const jumped = { ...hop, sounds: [strike, land] };
+  assert.equal(soundHeard(jumped, strike), 'jump');
+  assert.equal(soundHeard(jumped, land), 'land');
+  // Without a landing (a level shot: every height 0) the strike is a strike.
+  assert.equal(soundHeard(hop, strike), 'strike');
+  const flat = decodeMotion(encodeMotion(SHOT));
+  assert.equal(soundHeard(flat, flat.sounds[0]), 'strike');
 });

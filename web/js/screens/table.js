@@ -66,7 +66,10 @@ function testHook(live) {
      * @param {number} y
      */
     toScreen(x, y) { return live.view.surface.view?.toScreen(x, y) ?? null; },
-    get aim() { return { angle: aim.angle, power: aim.power, mode: aim.mode, tip: aim.tip }; },
+    get aim() {
+      return { angle: aim.angle, power: aim.power, mode: aim.mode, tip: aim.tip,
+        elevation: aim.elevation };
+    },
     get objectGuide() { return live.objectGuide; },
     get ticks() { return live.ticks; },
     get remoteCue() { return live.remoteCue; },

@@ -5,9 +5,13 @@
  * says what is to be drawn.
  */
 
-import { castGuide, squirt, objectPath, placementArea } from '../../geometry.js';
 import {
-  drawGuide, drawCue, drawPlacement, drawPocketCall, drawPowerMeter, drawClockRing,
+  castGuide, squirt, objectPath, placementArea, speedFromPower,
+} from '../../geometry.js';
+import { curvedGuide } from '../../swerve.js';
+import { GUIDE_POWER, MIN_POWER } from '../../input.js';
+import {
+  drawGuide, drawPath, drawCue, drawPlacement, drawPocketCall, drawPowerMeter, drawClockRing,
 } from '../../render.js';
 import { URGENT_AT } from '../../ui.js';
 
@@ -43,6 +47,20 @@ function drawGuideLine({ ctx, view }, table, balls, cue, guide) {
 }
 
 /**
+ * A guide that may bend (a raised cue's swerve): the curve up to its last straight run,
+ * then that run as any guide.
+ * @param {Frame} frame
+ * @param {any} table
+ * @param {BallList} balls
+ * @param {import('../../swerve.js').CurvedGuide} curved
+ * @returns {ObjectGuide | null}
+ */
+function drawCurvedGuide(frame, table, balls, { bends, from, guide }) {
+  if (bends.length) drawPath(frame.ctx, frame.view, table, [...bends, from]);
+  return drawGuideLine(frame, table, balls, from, guide);
+}
+
+/**
  * Where the object ball's guide line ends: the rail, a ball or the pocket it drops in.
  * @param {any} table
  * @param {BallList} balls
@@ -64,30 +82,40 @@ function objectGuide(table, balls, guide) {
  * @param {BallList} balls
  * @param {[number, number]} cue
  * @param {import('../../input.js').AimController} aim
- * @param {number} massRatio the server's `limits.cue_mass_ratio`
+ * @param {import('../../limits.js').Limits} limits the server's limits
  * @returns {ObjectGuide | null}
  */
-export function drawOwnAim(frame, table, balls, cue, aim, massRatio) {
-  const path = drawGuideLine(frame, table, balls, cue, aim.guide(table, balls, cue, massRatio));
+export function drawOwnAim(frame, table, balls, cue, aim, limits) {
+  const path = drawCurvedGuide(frame, table, balls, aim.guide(table, balls, cue, limits));
   drawCue(frame.ctx, frame.view, table, cue, aim.angle, aim.power);
   if (aim.mode === 'pulling') drawPowerMeter(frame.ctx, frame.view, cue, aim.power);
   return path;
 }
 
 /**
- * Another player's aim, as relayed: their guide (squirted by their side spin), their cue a
- * little faded, their power.
+ * Another player's aim, as relayed: their guide (squirted by their side spin, curved by a
+ * raised cue as their own is), their cue a little faded, their power.
  * @param {Frame} frame
  * @param {any} table
  * @param {BallList} balls
  * @param {[number, number]} cue
- * @param {{angle: number, power: number, tip: number[]}} remote
- * @param {number} massRatio
+ * @param {{angle: number, power: number, tip: number[], elevation?: number}} remote
+ * @param {import('../../limits.js').Limits} limits
  * @returns {ObjectGuide | null}
  */
-export function drawRemoteAim(frame, table, balls, cue, remote, massRatio) {
-  const line = remote.angle + squirt(remote.tip[0] ?? 0, massRatio);
-  const path = drawGuideLine(frame, table, balls, cue, castGuide(table, balls, cue, line));
+export function drawRemoteAim(frame, table, balls, cue, remote, limits) {
+  const massRatio = limits.cue_mass_ratio;
+  const elevation = remote.elevation ?? 0;
+  let path;
+  if (elevation > 0) {
+    const power = remote.power >= MIN_POWER ? remote.power : GUIDE_POWER;
+    const stroke = { angle: remote.angle, speed: speedFromPower(power, limits.max_speed),
+      tip: remote.tip, elevation };
+    path = drawCurvedGuide(frame, table, balls, curvedGuide(table, balls, cue, stroke, massRatio));
+  } else {
+    const line = remote.angle + squirt(remote.tip[0] ?? 0, massRatio);
+    path = drawGuideLine(frame, table, balls, cue, castGuide(table, balls, cue, line));
+  }
   drawCue(frame.ctx, frame.view, table, cue, remote.angle, remote.power, 0.85);
   if (remote.power > 0) drawPowerMeter(frame.ctx, frame.view, cue, remote.power);
   return path;

@@ -28,6 +28,7 @@ import {
 } from './aimlayer.js';
 import { aimWords } from './words.js';
 import { SpinWidget } from './spin.js';
+import { elevationControl } from './elevation.js';
 import { renderFrame, nominationAt } from './snooker.js';
 
 const AIM_INTERVAL = 0.1; // seconds between two `aim` messages (the server asks <= 20/s)
@@ -357,6 +358,12 @@ export class LiveTable {
     /** @type {Record<string, any>} */
     const msg = { type: 'aim', angle: Math.round(aim.angle * 1e4) / 1e4,
       power: Math.round(aim.power * 1000) / 1000, tip: aim.tip };
+    const raised = aim.elevation > 0 ? aim.shot(this.limits) : null;
+    if (raised?.elevation) {
+      // A raised cue: the tip as `shoot` names it, so the others' guides curve as ours.
+      msg.tip = raised.tip;
+      msg.elevation = raised.elevation;
+    }
     if (aim.mode === 'placing' && aim.placing) {
       msg.cue = [Math.round(aim.placing.x * 1e4) / 1e4, Math.round(aim.placing.y * 1e4) / 1e4];
     }
@@ -464,11 +471,10 @@ export class LiveTable {
    */
   drawAim(frame, sit, cue, now) {
     const { state } = this;
-    const ratio = this.limits.cue_mass_ratio;
-    if (sit.myTurn) return drawOwnAim(frame, state.table, sit.balls, cue, this.aim, ratio);
+    if (sit.myTurn) return drawOwnAim(frame, state.table, sit.balls, cue, this.aim, this.limits);
     const remote = state.aim;
     if (remote && remote.seat !== state.me.seat && now - remote.at < REMOTE_AIM_TTL) {
-      return drawRemoteAim(frame, state.table, sit.balls, cue, remote, ratio);
+      return drawRemoteAim(frame, state.table, sit.balls, cue, remote, this.limits);
     }
     return null;
   }
@@ -502,8 +508,22 @@ export class LiveTable {
     const canvas = this.view.canvas;
     const cursor = aim.mode === 'placing' ? 'grabbing' : this.overCueBall(sit) ? 'grab' : '';
     if (canvas.style.cursor !== cursor) canvas.style.cursor = cursor;
-    const tip = this.shownTip(sit, now);
-    this.spin.show(tip, tip !== aim.tip);
+    this.showCue(sit, now);
+  }
+
+  /**
+   * The spin widget and the elevation's side view: the shooter's own, or the relayed ones
+   * of the player at the table (their tip seen along their raised cue).
+   * @param {Situation} sit
+   * @param {number} now
+   */
+  showCue(sit, now) {
+    const shown = this.shownTip(sit, now);
+    const remote = shown !== this.aim.tip;
+    const raised = remote ? this.state.aim?.elevation ?? 0 : 0;
+    const tip = remote ? tipAlongCue(shown[0], shown[1], raised) : shown;
+    this.spin.show(tip, remote);
+    this.elevation.show(tip[1], remote ? Math.round((raised * 180) / Math.PI) : null);
   }
 
   /**
@@ -530,28 +550,6 @@ export class LiveTable {
         || now - state.aim.at > REMOTE_AIM_TTL || state.phase !== 'aiming') return this.aim.tip;
     return state.aim.tip;
   }
-}
-
-/**
- * The elevation slider (keyboard: arrows, Home/End; touch: drag), in degrees on screen
- * and radians to `onPick`; `set` moves it back (a shot without "keep spin").
- * @param {(radians: number) => void} onPick
- */
-function elevationControl(onPick) {
-  const input = $input('elevation');
-  const out = $('elevation-out');
-  const show = () => {
-    setText(out, `${input.value}°`);
-    onPick((Number(input.value) * Math.PI) / 180);
-  };
-  input.addEventListener('input', show);
-  return {
-    /** @param {number} degrees */
-    set(degrees) {
-      input.value = String(degrees);
-      show();
-    },
-  };
 }
 
 /** The "keep spin" box: remembered; unticked, the spin goes back to centre after a shot. */
