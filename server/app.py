@@ -13,12 +13,15 @@ from fastapi.exceptions import RequestValidationError
 from fastapi.responses import FileResponse
 from fastapi.staticfiles import StaticFiles
 
+from server.accounts import Accounts, Ceremonies, SignInLimits
+from server.api.accounts import router as accounts_router
 from server.api.body_limit import BodyLimit
 from server.api.headers import SecurityHeaders
 from server.api.matches import router as matches_router
 from server.api.meta import router as meta_router
 from server.api.name_errors import validation_handler
 from server.api.owner import answer_calls
+from server.api.passkeys import router as passkeys_router
 from server.api.players import router as players_router
 from server.api.quotas import ClientQuotas
 from server.api.rooms import router as rooms_router
@@ -92,9 +95,15 @@ def create_app(
     app.state.players = players
     app.state.matchmaker = matchmaker
     app.state.ranked_tables = RankedTables(results)
+    app.state.accounts = Accounts(store, settings.session_idle)
+    app.state.ceremonies = Ceremonies(store)
+    app.state.sign_in_limits = SignInLimits(settings.login_rate, settings.login_account_rate)
     if cluster is not None:
         answer_calls(cluster, registry, settings)
-    for router in (meta_router, rooms_router, matches_router, ws_router, players_router):
+    for router in (
+        *(meta_router, rooms_router, matches_router, ws_router, players_router),
+        *(accounts_router, passkeys_router),
+    ):
         app.include_router(router)
     app.add_exception_handler(RequestValidationError, validation_handler)
     _serve_web(app, settings.web_dir)
@@ -195,8 +204,8 @@ def peer_sockets(cluster: Cluster) -> list[str]:
 def _serve_web(app: FastAPI, web_dir: Path) -> None:
     """The client's own files only (the page, its stylesheet and `js/`; not its tests or
     package files). `/r/{room_id}` (a table), `/m/{match_id}` (a finished match,
-    replayed), `/profile`, `/p/{player_id}` and `/leaderboard` are the same page: the
-    client routes on the path."""
+    replayed), `/profile`, `/p/{player_id}`, `/leaderboard` and `/login` are the same page:
+    the client routes on the path."""
     index = web_dir / "index.html"
 
     async def page() -> FileResponse:
@@ -211,6 +220,7 @@ def _serve_web(app: FastAPI, web_dir: Path) -> None:
         "/profile",
         "/p/{player_id}",
         "/leaderboard",
+        "/login",
     ):
         app.add_api_route(path, page, methods=["GET"], include_in_schema=False)
 

@@ -189,7 +189,13 @@ class Settings(BaseSettings):
         return self
 
     @field_validator(
-        "room_create_rate", "join_rate", "watch_rate", "queue_rate", "player_create_rate"
+        "room_create_rate",
+        "join_rate",
+        "watch_rate",
+        "queue_rate",
+        "player_create_rate",
+        "login_rate",
+        "login_account_rate",
     )
     @classmethod
     def _rate(cls, value: str) -> str:
@@ -255,6 +261,12 @@ class Settings(BaseSettings):
     # rating farmed by fresh profiles of one address conceding to each other.
     playnow_same_address: bool = False
     player_create_rate: str = "20/minute"
+
+    # Accounts (docs/protocol.md, "Accounts"): a session ends after this long unused;
+    # sign-in attempts per address and per account name, in moving windows.
+    session_idle: Annotated[float, Field(ge=60.0, le=400 * 86_400.0)] = 30 * 86_400.0
+    login_rate: str = "20/10 minutes"
+    login_account_rate: str = "5/10 minutes"
 
     # The shared history (docs/scaling.md, "Shared history"): PostgreSQL when set (psycopg
     # 3), e.g. `postgresql://pool:secret@db.internal:5432/pool`; else the SQLite `db_path`.

@@ -14,13 +14,14 @@ from typing import Annotated
 from fastapi import Depends
 from starlette.requests import HTTPConnection
 
+from server.accounts import Accounts, Ceremonies, SignInLimits
 from server.cluster import Cluster
 from server.config import Settings
 from server.ladder import PlayerData, PlayNow, RankedTables
 from server.rooms import RoomRegistry
 from server.store import Database
 
-from .identity import cookie_secret
+from .identity import SESSION_COOKIE, cookie_secret
 from .owner import RoomAt, base_url
 from .quotas import ClientQuotas
 
@@ -82,9 +83,44 @@ async def get_ranked_tables(conn: HTTPConnection) -> RankedTables:
     return tables
 
 
-async def get_secret(conn: HTTPConnection) -> str | None:
-    """The asking player's secret (the `pool_player` cookie), if any."""
-    return cookie_secret(conn)
+async def get_accounts(conn: HTTPConnection) -> Accounts:
+    accounts: Accounts = conn.app.state.accounts
+    return accounts
+
+
+async def get_ceremonies(conn: HTTPConnection) -> Ceremonies:
+    ceremonies: Ceremonies = conn.app.state.ceremonies
+    return ceremonies
+
+
+async def get_sign_in_limits(conn: HTTPConnection) -> SignInLimits:
+    limits: SignInLimits = conn.app.state.sign_in_limits
+    return limits
+
+
+AccountsDep = Annotated[Accounts, Depends(get_accounts)]
+CeremoniesDep = Annotated[Ceremonies, Depends(get_ceremonies)]
+SignInLimitsDep = Annotated[SignInLimits, Depends(get_sign_in_limits)]
+
+
+async def get_session(
+    conn: HTTPConnection, accounts: AccountsDep, registry: Registry
+) -> str | None:
+    """The asking device's session id (the `pool_session` cookie), if it is live. Only a
+    request carrying that cookie asks the store: a guest's costs nothing more."""
+    session = cookie_secret(conn, SESSION_COOKIE)
+    if session is None or await accounts.session_player(session, registry.clock.wall()) is None:
+        return None
+    return session
+
+
+Session = Annotated[str | None, Depends(get_session)]
+
+
+async def get_secret(conn: HTTPConnection, session: Session) -> str | None:
+    """What names the asking player: the live session of a signed-in account, else the
+    guest's secret (the `pool_player` cookie), if any."""
+    return session if session is not None else cookie_secret(conn)
 
 
 async def get_base_url(conn: HTTPConnection, settings: SettingsDep, cluster: ClusterDep) -> str:

@@ -1,5 +1,7 @@
 """Who is asking, as a player: the secret in the `pool_player` cookie (HttpOnly, set on a
-first visit by `GET /api/players/me`), and the seat key made from it."""
+first visit by `GET /api/players/me`), and the seat key made from it; or, signed in to an
+account, the session id in the `pool_session` cookie (which stands for the secret then:
+its hash finds the player, its seat key opens the player's seats)."""
 
 from __future__ import annotations
 
@@ -8,12 +10,13 @@ from starlette.requests import HTTPConnection
 from server.players import seat_key
 
 COOKIE = "pool_player"
+SESSION_COOKIE = "pool_session"
 SECRET_MIN, SECRET_MAX = 20, 64  # characters of a well-formed secret (43 as made)
 
 
-def cookie_secret(conn: HTTPConnection) -> str | None:
-    """The player's secret from the cookie, if it looks like one."""
-    secret = conn.cookies.get(COOKIE)
+def cookie_secret(conn: HTTPConnection, cookie: str = COOKIE) -> str | None:
+    """The player's secret from the cookie (or a session id), if it looks like one."""
+    secret = conn.cookies.get(cookie)
     if secret is None or not SECRET_MIN <= len(secret) <= SECRET_MAX or not secret.isascii():
         return None
     return secret

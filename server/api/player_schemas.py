@@ -56,6 +56,7 @@ class Profile(BaseModel):
     id: str
     name: str
     me: bool  # the asking player's own profile
+    account: bool  # kept by a passkey or password (signs in anywhere); false: a guest
     ratings: list[RatingView]  # one per ranked game
     recent: list[RecentMatch]  # ranked matches, newest first
     matches: list[PlayedMatch]  # every match in the player's seats, newest first

@@ -9,6 +9,7 @@ from typing import Annotated, Any
 
 from fastapi import APIRouter, Depends, HTTPException, Path, Query, Request, Response
 
+from server.accounts import NameTaken
 from server.ladder import PlayerData, matched
 from server.players import (
     RANKED_KINDS,
@@ -27,12 +28,23 @@ from server.players import (
 from server.protocol.limits import MAX_NAME
 from server.rooms import ActionError
 
-from .deps import ClientId, Matchmaking, Players, Quotas, Registry, Secret, SettingsDep
-from .identity import COOKIE
+from .csrf import same_site
+from .deps import (
+    AccountsDep,
+    ClientId,
+    Matchmaking,
+    Players,
+    Quotas,
+    Registry,
+    Secret,
+    SettingsDep,
+)
+from .identity import COOKIE, SESSION_COOKIE
 from .player_schemas import Leaderboard, PlayNow, PlayNowStatus, Profile, Rename
 from .schemas import ErrorResponse
 
-router = APIRouter(tags=["players"])
+# A write another site's page makes is refused (403 `cross_site`, `csrf.py`).
+router = APIRouter(tags=["players"], dependencies=[Depends(same_site)])
 COOKIE_AGE = 400 * 86_400  # s: the longest browsers keep a cookie
 RECENT = 20  # ranked matches on a profile
 LEADERBOARD_MAX = 500
@@ -97,6 +109,7 @@ async def _profile(data: PlayerData, player: Player, now: float, me: bool) -> di
         "id": player.id,
         "name": player.name,
         "me": me,
+        "account": player.account,
         "ratings": [_rating_view(k, now) for k in ratings.values()],
         "recent": shown,
         "matches": [
@@ -155,19 +168,31 @@ async def my_profile(
         await data.add(player, secret_hash(secret))
         public = settings.public_url or ""
         _set_cookie(response, request, secret, public.startswith("https:"))
+        if SESSION_COOKIE in request.cookies:  # a session ended (signed out elsewhere, idle)
+            response.delete_cookie(SESSION_COOKIE, path="/", httponly=True, samesite="lax")
     return await _profile(data, player, now, me=True)
 
 
 @router.patch("/api/players/me", response_model=Profile, responses=_ERRORS)
-async def rename(body: Rename, me: Me, data: Players, registry: Registry) -> dict[str, Any]:
+async def rename(
+    body: Rename, me: Me, data: Players, accounts: AccountsDep, registry: Registry
+) -> dict[str, Any]:
     """A new display name (the rule of a seat's name; 422 `bad_name`). Rooms already
-    joined keep the name they were joined with."""
+    joined keep the name they were joined with. An account's name is its own: 409
+    `name_taken` when another account has it (after NFKC and casefolding)."""
     try:
         name = check_name(body.name, MAX_NAME)
     except BadName as exc:
         raise HTTPException(422, {"code": "bad_name", "message": str(exc)}) from None
-    await data.rename(me.id, name)
-    renamed = Player(me.id, name, me.created_at)
+    if me.account:
+        try:
+            await accounts.rename(me.id, name)
+        except NameTaken:
+            detail = {"code": "name_taken", "message": "Another account has this name."}
+            raise HTTPException(409, detail) from None
+    else:
+        await data.rename(me.id, name)
+    renamed = Player(me.id, name, me.created_at, me.account)
     return await _profile(data, renamed, registry.clock.wall(), me=True)
 
 

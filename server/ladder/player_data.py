@@ -28,7 +28,7 @@ class RankedRoom:
 
 
 def _player(record: PlayerRecord) -> Player:
-    return Player(record.id, record.name, record.created_at)
+    return Player(record.id, record.name, record.created_at, bool(record.account))
 
 
 def _kind_rating(record: RatingRecord) -> KindRating:

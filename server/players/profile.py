@@ -26,6 +26,7 @@ class Player:
     id: str
     name: str
     created_at: float
+    account: bool = False  # kept by a password or passkeys, across devices
 
 
 def new_player_id() -> str:

@@ -9,13 +9,21 @@ import json
 from dataclasses import dataclass
 from typing import Any
 
-from sqlalchemy import Connection, Row, func, literal, select
+from sqlalchemy import Connection, Row, func, literal, select, union_all
 from sqlalchemy.dialects import postgresql, sqlite
 
 from server.codec import encode
 
 from .repository import Repository
-from .schema import matches, player_ratings, player_seats, players, ranked_rooms, shots
+from .schema import (
+    matches,
+    player_ratings,
+    player_seats,
+    players,
+    ranked_rooms,
+    sessions,
+    shots,
+)
 
 
 @dataclass(frozen=True)
@@ -23,6 +31,15 @@ class PlayerRecord:
     id: str
     name: str
     created_at: float
+    account: bool = False  # claimed with a password or a passkey (server.accounts)
+
+
+_PROFILE = (
+    players.c.id,
+    players.c.name,
+    players.c.created_at,
+    players.c.name_key.is_not(None).label("account"),
+)
 
 
 @dataclass(frozen=True)
@@ -90,22 +107,22 @@ class PlayerRows:
             )
 
     def player_by_secret(self, secret_hash: str) -> PlayerRecord | None:
+        """The player of a guest's cookie, or of an account's session (its expiry is
+        `server.accounts`' to check before)."""
+        by_guest = select(*_PROFILE).where(players.c.secret_hash == secret_hash)
+        by_session = (
+            select(*_PROFILE)
+            .join(sessions, sessions.c.player_id == players.c.id)
+            .where(sessions.c.id_hash == secret_hash)
+        )
         with self.repo.transaction(write=False) as conn:
-            row = conn.execute(
-                select(players.c.id, players.c.name, players.c.created_at).where(
-                    players.c.secret_hash == secret_hash
-                )
-            ).first()
-        return None if row is None else PlayerRecord(row[0], row[1], row[2])
+            row = conn.execute(union_all(by_guest, by_session)).first()
+        return None if row is None else PlayerRecord(*row)
 
     def player(self, player_id: str) -> PlayerRecord | None:
         with self.repo.transaction(write=False) as conn:
-            row = conn.execute(
-                select(players.c.id, players.c.name, players.c.created_at).where(
-                    players.c.id == player_id
-                )
-            ).first()
-        return None if row is None else PlayerRecord(row[0], row[1], row[2])
+            row = conn.execute(select(*_PROFILE).where(players.c.id == player_id)).first()
+        return None if row is None else PlayerRecord(*row)
 
     def rename_player(self, player_id: str, name: str) -> None:
         with self.repo.transaction() as conn:
@@ -162,9 +179,12 @@ class PlayerRows:
     # ---- seats ------------------------------------------------------------------------
 
     def add_seat(self, secret_hash: str, room_id: str, seat: int, joined_at: float) -> None:
-        """The player of `secret_hash` (if any) sat in `room_id`'s `seat` (once a room)."""
-        found = select(players.c.id, literal(room_id), literal(seat), literal(joined_at)).where(
-            players.c.secret_hash == secret_hash
+        """The player of `secret_hash` (a guest's cookie or an account's session, if any)
+        sat in `room_id`'s `seat` (once a room)."""
+        values = (literal(room_id), literal(seat), literal(joined_at))
+        found = union_all(
+            select(players.c.id, *values).where(players.c.secret_hash == secret_hash),
+            select(sessions.c.player_id, *values).where(sessions.c.id_hash == secret_hash),
         )
         query = _insert(self.repo.dialect)(player_seats).from_select(
             ["player_id", "room_id", "seat", "joined_at"], found

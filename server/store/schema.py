@@ -99,13 +99,19 @@ counters = Table(  # ids handed out in blocks to several processes (`reserve_mat
     Column("value", BigInteger, nullable=False),
 )
 
-players = Table(  # profiles without passwords (server.players)
+players = Table(  # profiles: guests (a secret in a cookie) and accounts (server.accounts)
     "players",
     metadata,
     Column("id", Text, primary_key=True),
     Column("name", Text, nullable=False),
     Column("secret_hash", Text, nullable=False, unique=True),  # SHA-256 of the cookie
     Column("created_at", Double, nullable=False),
+    # Accounts only (NULL for a guest): the name's NFKC casefold, unique among accounts;
+    # the argon2id hash string of the password, if one was set; when the guest claimed it.
+    Column("name_key", Text),
+    Column("password_hash", Text),
+    Column("account_at", Double),
+    Index("players_name_key", "name_key", unique=True),
 )
 
 player_ratings = Table(  # Glicko-2, one row per player and game kind
@@ -150,4 +156,37 @@ player_seats = Table(  # the seats players with a profile took: their matches on
     Column("joined_at", Double, nullable=False),
     PrimaryKeyConstraint("player_id", "room_id"),
     Index("player_seats_room", "room_id"),
+)
+
+sessions = Table(  # signed-in devices of accounts: the cookie's SHA-256, never the cookie
+    "sessions",
+    metadata,
+    Column("id_hash", Text, primary_key=True),
+    Column("player_id", Text, ForeignKey("players.id"), nullable=False),
+    Column("label", Text, nullable=False),  # what the browser said it was, for people
+    Column("created_at", Double, nullable=False),
+    Column("last_seen", Double, nullable=False),  # expires `session_idle` s after this
+    Index("sessions_player", "player_id"),
+)
+
+passkeys = Table(  # WebAuthn credentials of accounts (discoverable)
+    "passkeys",
+    metadata,
+    Column("credential_id", Text, primary_key=True),  # base64url of the raw id
+    Column("player_id", Text, ForeignKey("players.id"), nullable=False),
+    Column("public_key", LargeBinary, nullable=False),  # COSE, as the library verified it
+    Column("sign_count", BigInteger, nullable=False),
+    Column("label", Text, nullable=False),
+    Column("created_at", Double, nullable=False),
+    Column("last_used", Double),
+    Index("passkeys_player", "player_id"),
+)
+
+ceremonies = Table(  # WebAuthn challenges waiting for their answer (one use each)
+    "ceremonies",
+    metadata,
+    Column("id_hash", Text, primary_key=True),  # SHA-256 of the ceremony cookie
+    Column("challenge", LargeBinary, nullable=False),
+    Column("player_id", Text),  # registration: who asked; sign-in: none
+    Column("expires_at", Double, nullable=False),
 )

@@ -7,6 +7,7 @@
  *  - `/m/{match_id}` screens/replay.js  a finished match, shot by shot
  *  - `/profile`, `/p/{player_id}` screens/profile.js  a player's name, ratings, matches
  *  - `/leaderboard`  screens/leaderboard.js  the ranking per game
+ *  - `/login`        screens/login.js   signing in with a passkey or a password
  */
 
 import { routeOf } from './routes.js';
@@ -16,12 +17,14 @@ import { startTable } from './screens/table.js';
 import { startReplay } from './screens/replay.js';
 import { startProfile } from './screens/profile.js';
 import { startLeaderboard } from './screens/leaderboard.js';
+import { startLogin } from './screens/login.js';
 
 const route = routeOf(location.pathname);
 if (route.screen === 'table') startTable(route.roomId);
 else if (route.screen === 'replay') startReplay(route.matchId);
 else if (route.screen === 'profile') startProfile(route.playerId);
 else if (route.screen === 'leaderboard') startLeaderboard();
+else if (route.screen === 'login') startLogin();
 else startLobby();
 
 // A contract for outside tests: what the renderer would draw t seconds after the strike of

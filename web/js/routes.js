@@ -1,8 +1,8 @@
 /**
  * Which screen a page address shows: `/` the lobby, `/r/{room_id}` a table (playing or
  * watching), `/m/{match_id}` a finished match replayed, `/profile` your profile,
- * `/p/{player_id}` anyone's, `/leaderboard` the ranking. Anything else falls back to the
- * lobby. Pure, so the routing is tested without a browser.
+ * `/p/{player_id}` anyone's, `/leaderboard` the ranking, `/login` signing in to an account.
+ * Anything else falls back to the lobby. Pure, so the routing is tested without a browser.
  */
 
 /**
@@ -10,7 +10,8 @@
  *   | {screen: 'table', roomId: string}
  *   | {screen: 'replay', matchId: string}
  *   | {screen: 'profile', playerId: string | null}
- *   | {screen: 'leaderboard'}} Route
+ *   | {screen: 'leaderboard'}
+ *   | {screen: 'login'}} Route
  */
 
 /**
@@ -22,6 +23,7 @@ export function routeOf(pathname) {
   const player = pathname.match(/^\/p\/([A-Za-z0-9_-]+)\/?$/);
   if (player) return { screen: 'profile', playerId: player[1] };
   if (/^\/leaderboard\/?$/.test(pathname)) return { screen: 'leaderboard' };
+  if (/^\/login\/?$/.test(pathname)) return { screen: 'login' };
   const room = pathname.match(/^\/r\/([A-Za-z0-9_-]+)\/?$/);
   if (room) return { screen: 'table', roomId: room[1] };
   const match = pathname.match(/^\/m\/([^/]+)\/?$/);

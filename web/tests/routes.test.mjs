@@ -7,6 +7,8 @@ test('the players pages are routed', () => {
   assert.deepEqual(routeOf('/profile'), { screen: 'profile', playerId: null });
   assert.deepEqual(routeOf('/p/abc_DEF-12'), { screen: 'profile', playerId: 'abc_DEF-12' });
   assert.deepEqual(routeOf('/leaderboard'), { screen: 'leaderboard' });
+  assert.deepEqual(routeOf('/login'), { screen: 'login' });
+  assert.deepEqual(routeOf('/login/'), { screen: 'login' });
   assert.deepEqual(routeOf('/p/<script>'), { screen: 'lobby' });
 });
 

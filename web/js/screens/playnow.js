@@ -46,7 +46,8 @@ export function mountPlayNow(root, settleName, again = null) {
   const who = el('span', { 'data-testid': 'playnow-name' });
   links.append(who,
     el('a', { href: '/profile', 'data-testid': 'profile-link' }, 'Your profile'), ' · ',
-    el('a', { href: '/leaderboard', 'data-testid': 'leaderboard-link' }, 'Leaderboard'));
+    el('a', { href: '/leaderboard', 'data-testid': 'leaderboard-link' }, 'Leaderboard'), ' · ',
+    el('a', { href: '/login', 'data-testid': 'login-link' }, 'Sign in'));
   root.replaceChildren(el('h2', {}, 'Play now'),
     el('p', { class: 'muted small' },
       'A ranked game with someone of your strength, in seconds.'), row, status, links);

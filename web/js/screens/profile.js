@@ -1,6 +1,6 @@
 /**
  * A player's profile: `/profile` (your own: the name can be changed, and is
- * used at every table from then on) or `/p/{player_id}`
+ * used at every table from then on; the account part, screens/account.js) or `/p/{player_id}`
  * (anyone's). Ratings per game (provisional ones marked), the recent ranked matches with
  * their rating change, and every recent match in the player's seats, each with a link to
  * its replay. Every name is written as text, never as markup.
@@ -8,6 +8,7 @@
 
 import { players, RANKED_GAMES, gameName, ratingText } from '../players.js';
 import { bindNameField, myProfile, settleName } from '../identity.js';
+import { accountPanel } from './account.js';
 
 /**
  * @param {string} tag
@@ -38,8 +39,13 @@ export async function startProfile(playerId) {
   const nav = el('p', { class: 'small' });
   nav.append(el('a', { href: '/' }, '← Lobby'), ' · ',
     el('a', { href: '/leaderboard' }, 'Leaderboard'));
+  if (profile.me && !profile.account) {
+    nav.append(' · ', el('a', { href: '/login', 'data-testid': 'profile-login' },
+      'Sign in to another player'));
+  }
   root.replaceChildren(nav, headPanel(profile, error), ratingsPanel(profile),
     recentPanel(profile.recent), matchesPanel(profile.matches));
+  if (profile.me) root.insertBefore(accountPanel(profile), root.children[2]);
 }
 
 /**
