@@ -20,6 +20,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Annotated
+
+from pydantic import Field
 
 MAX_SPEED = 12.0  # m/s
 MAX_TIP = 0.5  # fraction of the radius; beyond it a real cue miscues
@@ -35,13 +38,18 @@ class Shot:
     `tip = (side, height)`: side > 0 strikes right of centre (seen from behind the cue),
     height > 0 above centre; both as fractions of the radius, with |tip| <= 0.5.
 
-    Stored and sent through the codec as `{"angle", "speed", "tip": [side, height]}`;
+    `ball` is the ball the cue strikes: the cue ball (0) in pool and snooker; in carom
+    the striker's own cue ball (the white 0 or the yellow 1).
+
+    Stored and sent through the codec as `{"angle", "speed", "tip": [side, height]}`, and
+    `"ball"` when it is not 0 (so a pool shot's stored form is what it always was);
     loading runs `__post_init__`, so a stored or received shot is checked like a new one.
     """
 
     angle: float
     speed: float
     tip: tuple[float, float] = (0.0, 0.0)
+    ball: Annotated[int, Field(exclude_if=lambda ball: ball == 0)] = 0
 
     def __post_init__(self) -> None:
         side, height = self.tip
@@ -52,6 +60,8 @@ class Shot:
             raise ValueError(f"speed must be in (0, {MAX_SPEED}] m/s")
         if math.hypot(side, height) > MAX_TIP + 1e-12:
             raise ValueError(f"tip offset must be within {MAX_TIP} of the radius")
+        if not isinstance(self.ball, int) or isinstance(self.ball, bool) or self.ball < 0:
+            raise ValueError("the struck ball must be a ball id")
 
     def squirt(self, mass_ratio: float = DEFAULT_CUE_MASS_RATIO) -> float:
         """The squirt angle in radians, positive to the left of the aim line (right
