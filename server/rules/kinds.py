@@ -12,12 +12,14 @@ from .nine_ball import NineBallRules
 from .practice import PracticeRules
 from .snooker import SnookerRules
 from .strategy import GameRules
+from .three_cushion import ThreeCushionRules
 
 STRATEGIES: tuple[GameRules, ...] = (
     EightBallRules(),
     NineBallRules(),
     PracticeRules(),
     SnookerRules(),
+    ThreeCushionRules(),
 )
 RULES: dict[str, GameRules] = {rules.kind: rules for rules in STRATEGIES}
 GAME_KINDS = tuple(RULES)

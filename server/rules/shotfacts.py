@@ -1,7 +1,8 @@
 """The facts a referee needs from a shot, read from the engine's events and final table.
 
 The engine is 2-D, so balls never leave the table: there is no "off the table" fact here,
-and no rule below acts on one.
+and no rule below acts on one. The struck ball is the cue ball (0) unless told (carom: the
+striker's white or yellow).
 """
 
 from __future__ import annotations
@@ -29,6 +30,7 @@ class ShotFacts:
     pockets: pocket index (into `Table.pockets`) of each dropped ball, cue ball included.
     scratch: the cue ball dropped.
     balls_to_rail: distinct object balls that reached a cushion (counts for a legal break).
+    cue_path: what the struck ball met, in order: a ball's id, or -1 for a cushion (carom).
     final: the table at rest after the shot, before the rules re-spot anything (not a
     fact compared: the facts of a settled and a simulated shot are equal).
     """
@@ -39,6 +41,7 @@ class ShotFacts:
     pockets: dict[int, int]
     scratch: bool
     balls_to_rail: frozenset[int]
+    cue_path: tuple[int, ...] = ()
     final: BallSet | None = field(default=None, compare=False, repr=False)
 
     @property
@@ -46,7 +49,7 @@ class ShotFacts:
         return bool(self.pocketed)
 
 
-def shot_facts(before: BallSet, result: ShotResult | Settled) -> ShotFacts:
+def shot_facts(before: BallSet, result: ShotResult | Settled, cue: int = CUE) -> ShotFacts:
     """Facts of `result`, a shot played from the table `before` (its final table has
     `before`'s rows, as the engine keeps them).
 
@@ -59,16 +62,22 @@ def shot_facts(before: BallSet, result: ShotResult | Settled) -> ShotFacts:
     order: list[int] = []
     pockets: dict[int, int] = {}
     to_rail: set[int] = set()
+    path: list[int] = []
     for code, ball, other, target in result.contacts():
         if code == _BALL:
-            if not contact_seen and (ball == CUE or other == CUE):
-                first_contact = other if ball == CUE else ball
-                contact_seen = True
+            if ball == cue or other == cue:
+                met = other if ball == cue else ball
+                path.append(met)
+                if not contact_seen:
+                    first_contact = met
+                    contact_seen = True
         elif code in (_CUSHION, _JAW):  # a pocket's point is a rail too
             if contact_seen:
                 rail_after_contact = True
-            if ball != CUE:
+            if ball != cue:
                 to_rail.add(ball)
+            else:
+                path.append(-1)
         elif code == _POCKET and ball not in pockets:
             order.append(ball)
             pockets[ball] = target
@@ -84,9 +93,10 @@ def shot_facts(before: BallSet, result: ShotResult | Settled) -> ShotFacts:
     return ShotFacts(
         first_contact=first_contact,
         rail_after_contact=rail_after_contact,
-        pocketed=tuple(b for b in order if b != CUE),
+        pocketed=tuple(b for b in order if b != cue),
         pockets=pockets,
-        scratch=CUE in dropped,
+        scratch=cue in dropped,
         balls_to_rail=frozenset(to_rail),
+        cue_path=tuple(path),
         final=final,
     )

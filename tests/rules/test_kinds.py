@@ -41,7 +41,7 @@ def facts(
 
 # --- lookup ----------------------------------------------------------------------------
 def test_one_strategy_per_kind_looked_up_by_its_kind() -> None:
-    assert GAME_KINDS == ("eight_ball", "nine_ball", "practice", "snooker")
+    assert GAME_KINDS == ("eight_ball", "nine_ball", "practice", "snooker", "three_cushion")
     for kind in GAME_KINDS:
         assert rules_for(kind).kind == kind and RULES[kind] is rules_for(kind)
     assert (type(EIGHT), type(NINE), type(PRACTICE)) == (
@@ -49,10 +49,10 @@ def test_one_strategy_per_kind_looked_up_by_its_kind() -> None:
         NineBallRules,
         PracticeRules,
     )
-    with pytest.raises(ValueError, match="unknown game 'three_cushion'"):
-        rules_for("three_cushion")
+    with pytest.raises(ValueError, match="unknown game 'four_ball'"):
+        rules_for("four_ball")
     with pytest.raises(ValueError, match="unknown game"):
-        Game.new("three_cushion", ("Ana", "Bob"))
+        Game.new("four_ball", ("Ana", "Bob"))
 
 
 @pytest.mark.parametrize(

@@ -154,6 +154,7 @@ def random_game(rng: np.random.Generator, kind: str | None = None) -> Game:
     players = ("Ana",) if solo else ("Ana", "Bob")
     table = Table.pool(str(rng.choice(["7ft", "8ft", "9ft"])))
     table = Table.snooker() if kind == "snooker" else table
+    table = Table.carom() if kind == "three_cushion" else table
     options = RuleOptions(bool(rng.integers(2)))
     game = Game.new(kind, players, table=table, seed=int(rng.integers(1000)), options=options)
     seat = int(rng.integers(len(players)))
