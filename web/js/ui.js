@@ -104,6 +104,7 @@ function setBalls(el, ids) {
 /** @type {Record<string, string>} */
 const GAME_NAMES = {
   eight_ball: '8-ball', nine_ball: '9-ball', practice: 'Practice', snooker: 'Snooker',
+  three_cushion: 'Three-cushion',
 };
 
 /**
@@ -416,7 +417,7 @@ function renderRematch(state) {
  */
 function renderWaysOn(state) {
   const ended = state.phase === 'over' || Boolean(state.room?.abandoned);
-  const ranked = ['nine_ball', 'snooker'];
+  const ranked = ['nine_ball', 'snooker', 'three_cushion'];
   const game = ranked.includes(state.room?.game ?? '') ? state.room?.game : 'eight_ball';
   const again = /** @type {HTMLAnchorElement} */ ($('new-opponent'));
   const href = `/?playnow=${game}`;

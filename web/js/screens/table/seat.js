@@ -11,6 +11,7 @@ import { bindNameField, profileName, settleName } from '../../identity.js';
 /** @type {Record<string, string>} */
 const GAME_NAMES = {
   eight_ball: '8-ball', nine_ball: '9-ball', practice: 'Practice', snooker: 'Snooker',
+  three_cushion: 'Three-cushion',
 };
 
 /**
