@@ -70,9 +70,17 @@ export function cushionBacks(table) {
   const near = (p, q) => Math.hypot(p[0] - q[0], p[1] - q[1]) < 1e-9;
   /** @param {Vec} j */
   const pocketAtJaw = (j) => table.pockets.find((p) => p.jaws && p.jaws.some((q) => near(q, j)));
+  /** @param {{start: Vec, end: Vec}} c @param {Vec} j */
+  const meeting = (c, j) => table.cushions.find((o) => o !== c
+    && (near(o.start, j) || near(o.end, j)));
   return table.cushions.map((c) => {
     const [nx, ny] = c.normal;
     return [c.start, c.end].map((j) => {
+      const other = meeting(c, j);
+      if (other) { // a closed corner (carom): mitred to the rail's corner
+        const [mx, my] = other.normal;
+        return [j[0] - CUSHION_WIDTH * (nx + mx), j[1] - CUSHION_WIDTH * (ny + my)];
+      }
       const pocket = pocketAtJaw(j);
       let [dx, dy] = pocket ? pocketOutward(pocket) : [-nx, -ny];
       const along = -(dx * nx + dy * ny); // how fast the cut goes back into the rail
