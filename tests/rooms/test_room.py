@@ -101,7 +101,7 @@ def test_a_name_of_24_characters_is_fine_and_seats_without_a_player_are_named() 
 
 def test_unknown_game_and_practice_settings() -> None:
     with pytest.raises(ValueError):
-        Room("r00m1d_abcde", "three_cushion")
+        Room("r00m1d_abcde", "four_ball")
     practice = Room("practice_id0", "practice", race_to=5, shot_clock=30.0)
     assert (practice.seats, practice.race_to, practice.shot_clock) == ([None], 1, 0.0)
     practice.join("Pia")
