@@ -264,6 +264,8 @@ class Search:
             q = self.chance_for(nxt, final)
             mine = set(self.targets(pos))
             progress = PROGRESS * sum(1 for b in pocketed if b in mine)
+            if ruling.score is not None and pos.score is not None:  # snooker: by the points
+                progress = PROGRESS * (ruling.score.points[me] - pos.score.points[me])
             w = level.position
             spread = open_share(self.table, final, self.targets(nxt))
             quality = (1 - OPEN_WEIGHT) * q + OPEN_WEIGHT * spread

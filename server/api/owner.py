@@ -21,6 +21,7 @@ from server.cluster import Cluster, Unreachable, ws_url
 from server.config import Settings
 from server.players import seat_token
 from server.rooms import ActionError, LiveRoom, RoomRegistry
+from server.rules import PRACTICE_KINDS
 
 from .hints import hint_ask, hint_for
 from .schemas import CreateRoom
@@ -48,7 +49,7 @@ async def open_room(
 ) -> dict[str, Any]:
     """Create the room here (limits already checked by the receiving process)."""
     try:
-        if body.opponent is not None and body.game == "practice":
+        if body.opponent is not None and body.game in PRACTICE_KINDS:
             raise HTTPException(
                 422, {"code": "bad_opponent", "message": "Practice is played alone."}
             )

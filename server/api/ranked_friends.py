@@ -15,6 +15,7 @@ from fastapi import HTTPException
 from server.cluster import Cluster
 from server.ladder import PlayerData
 from server.players import Player, secret_hash
+from server.rules import PRACTICE_KINDS
 
 NEEDS_AGREEMENT = {
     "code": "ranked_needs_agreement",
@@ -28,7 +29,7 @@ def check_create(
 ) -> None:
     """Refuse a ranked table that cannot be one (422 `bad_ranked`), one asked for without a
     profile (401 `no_player`) or in cluster mode (409 `ranked_unavailable`)."""
-    if game == "practice" or opponent is not None:
+    if game in PRACTICE_KINDS or opponent is not None:
         raise HTTPException(
             422,
             {

@@ -10,7 +10,9 @@ from server.ai import LEVELS
 
 from .inputs import Name, StrictBody
 
-GameKind = Literal["eight_ball", "nine_ball", "practice", "snooker", "three_cushion"]
+GameKind = Literal[
+    "eight_ball", "nine_ball", "practice", "snooker", "snooker_practice", "three_cushion"
+]
 
 
 class CreateRoom(StrictBody):

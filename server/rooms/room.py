@@ -124,7 +124,7 @@ class Room:
 
     @property
     def practice(self) -> bool:
-        return self.game == "practice"
+        return rules_for(self.game).seats == 1
 
     def join(self, name: str, token: str | None = None) -> tuple[int, str]:
         """Take the first free seat; returns (seat, token). Starts the match when full.

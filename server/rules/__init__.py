@@ -10,11 +10,13 @@ from .kinds import GAME_KINDS
 from .match import Match
 from .options import RuleOptions
 from .outcome import ANYWHERE, BEHIND_HEAD_STRING, Decision, Foul, Outcome
+from .practice import PRACTICE_KINDS
 
 __all__ = [
     "ANYWHERE",
     "BEHIND_HEAD_STRING",
     "GAME_KINDS",
+    "PRACTICE_KINDS",
     "Decision",
     "Foul",
     "Game",

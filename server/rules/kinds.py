@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from .eight_ball import EightBallRules
 from .nine_ball import NineBallRules
-from .practice import PracticeRules
+from .practice import PracticeRules, SnookerPracticeRules
 from .snooker import SnookerRules
 from .strategy import GameRules
 from .three_cushion import ThreeCushionRules
@@ -19,6 +19,7 @@ STRATEGIES: tuple[GameRules, ...] = (
     NineBallRules(),
     PracticeRules(),
     SnookerRules(),
+    SnookerPracticeRules(),
     ThreeCushionRules(),
 )
 RULES: dict[str, GameRules] = {rules.kind: rules for rules in STRATEGIES}

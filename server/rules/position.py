@@ -6,7 +6,7 @@ only be a function of the position and the shot; `Game` alone changes state.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from server.engine import CUE, BallSet, Table
 
@@ -39,7 +39,7 @@ class Position:
     called_pocket: int | None = None
     push_out_declared: bool = False
     score: FrameScore | None = None
-    balls: BallSet | None = None
+    balls: BallSet | None = field(default=None, compare=False, repr=False)
     carom: CaromScore | None = None
 
     @property

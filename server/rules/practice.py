@@ -1,4 +1,5 @@
-"""Practice: one player, ball in hand anywhere at all times, no fouls, never over."""
+"""Practice: one player, ball in hand anywhere at all times, no fouls, never over; on the
+pool table ("practice") or the snooker table ("snooker_practice")."""
 
 from __future__ import annotations
 
@@ -6,11 +7,14 @@ from collections.abc import Sequence
 
 from typing_extensions import override
 
+from server.engine import Table
+
 from .outcome import ANYWHERE
 from .position import Position
 from .ruling import Ruling
 from .shotfacts import ShotFacts
 from .strategy import GameRules
+from .words import and_list, snooker_ball
 
 
 class PracticeRules(GameRules):
@@ -59,3 +63,22 @@ class PracticeRules(GameRules):
     @override
     def foul_warning(self, fouls_in_row: Sequence[int], seat: int, name: str) -> str | None:
         return None
+
+
+class SnookerPracticeRules(PracticeRules):
+    """Practice on the snooker table with its 22 balls: the same freedom (no fouls, ball in
+    hand anywhere)."""
+
+    kind = "snooker_practice"
+    rack = "snooker"
+
+    @override
+    def table(self) -> Table:
+        return Table.snooker()
+
+    @override
+    def ball_names(self, ball_ids: Sequence[int]) -> str:
+        return and_list(snooker_ball(b) for b in ball_ids)
+
+
+PRACTICE_KINDS = ("practice", "snooker_practice")

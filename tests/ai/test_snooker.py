@@ -84,3 +84,14 @@ def test_the_computer_takes_a_free_ball() -> None:
     assert game.decision is not None and game.decision.options[0] == "free_ball"
     turn = Bot("amateur", seed=1).plan(game, 1)
     assert turn.decision == "free_ball"
+
+
+def test_show_me_a_shot_on_the_snooker_practice_table() -> None:
+    # The practice table on snooker: one player, its 22 balls; the hint is the top level's
+    # plan, played through the rules.
+    game = Game.new("snooker_practice", ("Pia",), seed=2)
+    assert game.table.style == "snooker" and len(game.balls) == 22
+    turn = Bot("pro", seed=1).plan(game, 0)
+    assert turn.shot is not None
+    out, _ = play_turn(game, 0, turn)
+    assert out is not None and not out.fouls and game.turn == 0

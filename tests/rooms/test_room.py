@@ -298,3 +298,11 @@ def test_practice_has_ball_in_hand_at_will_and_reracks() -> None:
     room.rerack(0)
     assert room.resting_balls()[0][:3] == (0, 635, 635) and len(room.resting_balls()) == 16
     assert room.shots_played == 1 and room.phase == "aiming"
+
+
+def test_a_snooker_practice_table_has_one_seat_and_the_snooker_table() -> None:
+    practice = Room("practice_id1", "snooker_practice", race_to=3, shot_clock=30.0)
+    assert (practice.seats, practice.race_to, practice.shot_clock) == ([None], 1, 0.0)
+    practice.join("Pia")
+    assert practice.phase == "aiming" and practice.match is not None
+    assert practice.match.game.table.style == "snooker"

@@ -41,7 +41,14 @@ def facts(
 
 # --- lookup ----------------------------------------------------------------------------
 def test_one_strategy_per_kind_looked_up_by_its_kind() -> None:
-    assert GAME_KINDS == ("eight_ball", "nine_ball", "practice", "snooker", "three_cushion")
+    assert GAME_KINDS == (
+        "eight_ball",
+        "nine_ball",
+        "practice",
+        "snooker",
+        "snooker_practice",
+        "three_cushion",
+    )
     for kind in GAME_KINDS:
         assert rules_for(kind).kind == kind and RULES[kind] is rules_for(kind)
     assert (type(EIGHT), type(NINE), type(PRACTICE)) == (

@@ -66,6 +66,14 @@ export function ballColor(id, style = 'pool') {
 }
 
 /**
+ * A practice table's kind (one player, no race): on the pool or the snooker table.
+ * @param {string | null | undefined} kind
+ */
+export function isPractice(kind) {
+  return kind === 'practice' || kind === 'snooker_practice';
+}
+
+/**
  * "the pink", "a red": a snooker ball as players name it.
  * @param {number} id
  */

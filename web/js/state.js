@@ -6,7 +6,7 @@
  * sound, ask for a `sync`). Pure: no DOM, no sockets, so it is tested with `node --test`.
  */
 
-import { groupBalls } from './balls.js';
+import { groupBalls, isPractice } from './balls.js';
 import { DEFAULT_LIMITS, DEFAULT_STREAM, readLimits, readStream } from './limits.js';
 import { base64Bytes, decodeMotion } from './track.js';
 
@@ -345,7 +345,7 @@ export function scoreText(state) {
   if (!m || !m.score) return '';
   const a = playerName(state, 0) ?? 'Player 1';
   const b = playerName(state, 1);
-  if (m.kind === 'practice' || b === null) return `${a} · practice`;
+  if (isPractice(m.kind) || b === null) return `${a} · practice`;
   return `${a} ${m.score[0]} – ${m.score[1]} ${b} (race to ${m.race_to ?? 1})`;
 }
 

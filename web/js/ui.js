@@ -4,7 +4,7 @@
  * Written to only touch the DOM when a shown value changes.
  */
 
-import { ballColor, isStripe, groupBalls } from './balls.js';
+import { ballColor, isStripe, groupBalls, isPractice } from './balls.js';
 import {
   playerName, turnSeat, isMyTurn, clockRemaining, groupOf, ballsLeft, pocketedBalls,
   scoreText, winnerName,
@@ -104,6 +104,7 @@ function setBalls(el, ids) {
 /** @type {Record<string, string>} */
 const GAME_NAMES = {
   eight_ball: '8-ball', nine_ball: '9-ball', practice: 'Practice', snooker: 'Snooker',
+  snooker_practice: 'Snooker practice',
   three_cushion: 'Three-cushion',
 };
 
@@ -124,7 +125,7 @@ export function renderRooms(list, rooms, { onJoin, onWatch }) {
     const players = seats.map((p) => p ?? 'free seat').join(' vs ');
     const title = document.createElement('div');
     title.textContent = `${GAME_NAMES[r.game] ?? r.game}`
-      + (r.game !== 'practice' ? ` · race to ${r.race_to}` : '') + (r.ranked ? ' · ranked' : '');
+      + (!isPractice(r.game) ? ` · race to ${r.race_to}` : '') + (r.ranked ? ' · ranked' : '');
     const who = document.createElement('div');
     who.className = 'who';
     who.textContent = `${players}${r.spectators ? ` · ${r.spectators} watching` : ''}`;
@@ -356,7 +357,7 @@ function outcomeText(state) {
 function renderActions(state) {
   const m = state.match;
   const isPlayer = state.me.role === 'player';
-  const practice = m?.kind === 'practice' || state.room?.game === 'practice';
+  const practice = isPractice(m?.kind) || isPractice(state.room?.game);
   setHidden($('concede'), !(isPlayer && !practice && (state.phase === 'aiming'
     || state.phase === 'rolling')));
   setHidden($('rerack'), !(isPlayer && practice));

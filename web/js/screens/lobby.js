@@ -10,6 +10,7 @@ import { api, memory, request } from '../net.js';
 import { DEFAULT_LIMITS, readLimits } from '../limits.js';
 import { $, $input, $select, applyInputLimits, renderRooms, renderHistory } from '../ui.js';
 import { mountPlayNow } from './playnow.js';
+import { isPractice } from '../balls.js';
 import { bindNameField, settleName } from '../identity.js';
 
 const REFRESH_EVERY = 3000; // ms between two refreshes of the lists
@@ -41,7 +42,7 @@ export function startLobby() {
   // Practice is one rack alone: no race, no clock to set.
   const gameEl = $select('game');
   const showGameOptions = () => {
-    const practice = gameEl.value === 'practice';
+    const practice = isPractice(gameEl.value);
     $input('race-to').disabled = practice;
     $select('shot-clock-select').disabled = practice;
     // Ranked: two people at 8-ball or 9-ball (never practice).
@@ -86,7 +87,7 @@ export function startLobby() {
     const raceEl = $input('race-to');
     const lo = Number(raceEl.min) || 1;
     const raceTo = Math.min(Number(raceEl.max) || lo, Math.max(lo, Number(raceEl.value) || lo));
-    const practice = $select('game').value === 'practice';
+    const practice = isPractice($select('game').value);
     const shotClock = practice ? undefined : Number($select('shot-clock-select').value);
     openTable({ game: $select('game').value, raceTo: practice ? 1 : raceTo,
       shotClock: Number.isFinite(shotClock) ? shotClock : undefined,

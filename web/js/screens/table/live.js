@@ -14,6 +14,7 @@ import {
   initialState, setConnection, isMyTurn, clockRemaining, playerName,
 } from '../../state.js';
 import { clampTip } from '../../geometry.js';
+import { isPractice } from '../../balls.js';
 import { attachPointer, AimController } from '../../input.js';
 import {
   $, $input, applyInputLimits, renderHud, renderChat, renderDecision, renderAway, setText,
@@ -498,7 +499,7 @@ export class LiveTable {
     setHidden(chip, !words);
     setHidden($('fine-aim'), !(sit.myTurn && aim.mode !== 'placing' && !sit.requiresCall));
     this.coach.show(sit.myTurn && aim.mode !== 'placing');
-    this.hint.offer(sit.myTurn && state.room?.game === 'practice');
+    this.hint.offer(sit.myTurn && isPractice(state.room?.game));
     const shoot = $('hint-shoot');
     const tried = this.triedPower !== null && this.hint.plan !== null && sit.myTurn
       && aim.mode === 'idle';

@@ -5,12 +5,14 @@
  */
 
 import { api, memory } from '../../net.js';
+import { isPractice } from '../../balls.js';
 import { $, $input } from '../../ui.js';
 import { bindNameField, profileName, settleName } from '../../identity.js';
 
 /** @type {Record<string, string>} */
 const GAME_NAMES = {
   eight_ball: '8-ball', nine_ball: '9-ball', practice: 'Practice', snooker: 'Snooker',
+  snooker_practice: 'Snooker practice',
   three_cushion: 'Three-cushion',
 };
 
@@ -55,7 +57,7 @@ export function chooseSeat(roomId, room, socket) {
  */
 export function invitation(room, names) {
   const game = GAME_NAMES[room.game] ?? room.game;
-  const what = room.game === 'practice' ? 'A practice table.'
+  const what = isPractice(room.game) ? 'A practice table.'
     : `${game} · race to ${room.race_to}`
       + (room.shot_clock > 0 ? ` · ${Math.round(room.shot_clock)} s shot clock.` : '.');
   const who = names.length
