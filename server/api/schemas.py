@@ -11,7 +11,13 @@ from server.ai import LEVELS
 from .inputs import Name, StrictBody
 
 GameKind = Literal[
-    "eight_ball", "nine_ball", "practice", "snooker", "snooker_practice", "three_cushion"
+    "eight_ball",
+    "nine_ball",
+    "practice",
+    "snooker",
+    "snooker_practice",
+    "three_cushion",
+    "three_cushion_practice",
 ]
 
 

@@ -50,6 +50,11 @@ class CaromScore:
             equal_innings=equal_innings,
         )
 
+    @classmethod
+    def start_alone(cls, race_to: int) -> CaromScore:
+        """One player's score (practice): its first inning begun."""
+        return cls(points=(0,), innings=(1,), high_run=(0,), race_to=race_to)
+
     def cue_ball(self, seat: int) -> int:
         """The ball `seat` strikes: the white for the opener's seat, else the yellow."""
         return WHITE if seat == self.white else YELLOW

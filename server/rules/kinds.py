@@ -12,7 +12,7 @@ from .nine_ball import NineBallRules
 from .practice import PracticeRules, SnookerPracticeRules
 from .snooker import SnookerRules
 from .strategy import GameRules
-from .three_cushion import ThreeCushionRules
+from .three_cushion import ThreeCushionPracticeRules, ThreeCushionRules
 
 STRATEGIES: tuple[GameRules, ...] = (
     EightBallRules(),
@@ -21,6 +21,7 @@ STRATEGIES: tuple[GameRules, ...] = (
     SnookerRules(),
     SnookerPracticeRules(),
     ThreeCushionRules(),
+    ThreeCushionPracticeRules(),
 )
 RULES: dict[str, GameRules] = {rules.kind: rules for rules in STRATEGIES}
 GAME_KINDS = tuple(RULES)

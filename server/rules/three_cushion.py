@@ -201,3 +201,47 @@ def _set_up_if_frozen(pos: Position, facts: ShotFacts, next_cue: int, ruling: Ru
             ruling.spot = (next_cue,)
             ruling.notes.append("The balls are touching: they are set up as at the opening.")
             return
+
+
+class ThreeCushionPracticeRules(ThreeCushionRules):
+    """Three-cushion practice: one player on the white from the opening position, every
+    stroke judged and counted as in a game (points, innings, runs) but never a foul and
+    never over; the balls stay where they stop, a re-rack sets the opening up again."""
+
+    kind = "three_cushion_practice"
+    seats = 1
+    rerack_at_will = True
+
+    @override
+    def new_carom(self, opener: int) -> CaromScore | None:
+        return CaromScore.start_alone(race_to=PRACTICE_RACE)
+
+    @override
+    def judge(self, pos: Position, facts: ShotFacts) -> Ruling:
+        ruling = super().judge(pos, facts)
+        return _alone(ruling)
+
+    @override
+    def timeout(self, pos: Position) -> Ruling:
+        return Ruling(continues=True, notes=["Time ran out."])
+
+    @override
+    def _inning_over(
+        self, pos: Position, score: CaromScore, ruling: Ruling, facts: ShotFacts | None
+    ) -> Ruling:
+        ruling.carom = score.inning_over(pos.turn)
+        if facts is not None:
+            _set_up_if_frozen(pos, facts, score.cue_ball(pos.turn), ruling)
+        return ruling
+
+
+PRACTICE_RACE = 10**6  # practice is never won
+
+
+def _alone(ruling: Ruling) -> Ruling:
+    """Alone at the table the player always plays on: a foul only says what was wrong."""
+    ruling.notes = [f.message for f in ruling.fouls] + ruling.notes
+    ruling.fouls = []
+    ruling.continues = True
+    ruling.winner = ruling.reason = None
+    return ruling

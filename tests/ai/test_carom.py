@@ -68,3 +68,12 @@ def test_a_leave_with_the_balls_apart_and_on_a_rail_is_worth_less():
     easy = BallSet.place({WHITE: (1.0, 0.7), YELLOW: (1.2, 0.7), RED: (1.1, 0.75)})
     hard = BallSet.place({WHITE: (0.1, 0.1), YELLOW: (2.8, 0.7), RED: (2.7, 1.3)})
     assert leave_value(CAROM, hard, WHITE) < leave_value(CAROM, easy, WHITE)
+
+
+def test_show_me_a_shot_on_the_three_cushion_practice_table():
+    # The hint is the top level's plan: on the opening, a point off the red first.
+    game = Game.new("three_cushion_practice", ("Pia",))
+    turn = Bot("pro", seed=1).plan(game, 0)
+    assert turn.shot is not None and turn.kind == "point" and turn.target == RED
+    out, _ = play_turn(game, 0, turn)
+    assert out is not None and not out.fouls and game.turn == 0 and game.points == (1,)

@@ -48,6 +48,7 @@ def test_one_strategy_per_kind_looked_up_by_its_kind() -> None:
         "snooker",
         "snooker_practice",
         "three_cushion",
+        "three_cushion_practice",
     )
     for kind in GAME_KINDS:
         assert rules_for(kind).kind == kind and RULES[kind] is rules_for(kind)

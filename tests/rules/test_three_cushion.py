@@ -201,3 +201,18 @@ def test_a_real_stroke_is_judged_from_the_engine_and_stored():
 
 def test_a_new_score_starts_the_openers_first_inning():
     assert CaromScore.start(1).innings == (0, 1)
+
+
+def test_practice_counts_points_and_innings_alone_and_never_ends():
+    g = Game.new("three_cushion_practice", ("Pia",))
+    assert g.table == CAROM and g.cue_ball == WHITE and g.points == (0,)
+    assert g.legal_targets() == [RED]
+    play(g, YELLOW, C, C, C, RED)  # the opening not on the red: said, not a foul
+    assert g.turn == 0 and g.last_outcome is not None and not g.last_outcome.fouls
+    assert "did not hit the red first" in g.last_outcome.message
+    assert g.carom is not None and g.carom.innings == (2,)
+    play(g, RED, C, C, C, YELLOW)
+    play(g, C, C, C, YELLOW, RED)
+    assert g.points == (2,) and g.carom.high_run == (2,) and not g.over
+    g.rerack()
+    assert g.points == (0,) and g.balls.position_of(RED) == CAROM.spots["foot"]

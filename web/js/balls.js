@@ -66,11 +66,11 @@ export function ballColor(id, style = 'pool') {
 }
 
 /**
- * A practice table's kind (one player, no race): on the pool or the snooker table.
+ * A practice table's kind (one player, no race): on the pool, snooker or carom table.
  * @param {string | null | undefined} kind
  */
 export function isPractice(kind) {
-  return kind === 'practice' || kind === 'snooker_practice';
+  return kind === 'practice' || kind === 'snooker_practice' || kind === 'three_cushion_practice';
 }
 
 /**
