@@ -136,7 +136,8 @@ class CaromSearch:
             base = math.atan2(by - cy, bx - cx)
             reach = 2 * self.table.ball_radius
             for k, f in enumerate(np.linspace(-0.95, 0.95, e.cuts)):
-                lines.append((base + math.asin(min(f * reach / dist, 1.0)), ball, k))
+                offset = max(-1.0, min(f * reach / max(dist, 1e-9), 1.0))
+                lines.append((base + math.asin(offset), ball, k))
         if first_only is None:
             for k in range(e.directions):
                 lines.append((2 * math.pi * k / e.directions, None, k))
