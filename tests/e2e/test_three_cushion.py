@@ -62,3 +62,29 @@ def test_a_newcomer_plays_three_cushion_against_the_computer(base_url, new_page,
     ana.get_by_test_id("concede").click()
     wait_for(ana, "window.__pool.state.phase === 'over'", timeout=30_000)
     expect(ana.get_by_test_id("turn")).to_contain_text("wins the match")
+
+
+def test_show_me_a_shot_on_the_three_cushion_practice_table(base_url, new_page):
+    """Practice on the carom table: "Show me a shot" is the computer's point off the red
+    (the opening), "Try it" sets it up and Shoot plays it; the scoreboard counts it."""
+    pia = new_page()
+    pia.goto(base_url + "/")
+    pia.get_by_test_id("name").fill("Pia")
+    pia.get_by_test_id("game-select").select_option("three_cushion_practice")
+    pia.get_by_test_id("create-room").click()
+    pia.wait_for_url(re.compile(r"/r/[A-Za-z0-9_-]+$"))
+    wait_ready(pia, "aiming")
+    assert pia.evaluate("window.__pool.state.table.style") == "carom"
+    with pia.expect_response(lambda r: r.url.endswith("/hint")) as answer:
+        pia.get_by_test_id("hint").click()
+    plan = answer.value.json()
+    assert plan["kind"] == "point" and plan["target"] == 2 and plan["chance"] > 0
+    caption = pia.get_by_test_id("hint-text")
+    expect(caption).to_have_text(re.compile(r"^Score the point \(\d+ % of the computer's trials"))
+    pia.get_by_test_id("hint-try").click()
+    pia.get_by_test_id("hint-shoot").click()
+    wait_for(pia, "window.__pool.shotsSeen === 1")
+    wait_for(pia, "window.__pool.state.lastResult?.outcome?.shooter === 0", timeout=60_000)
+    carom = pia.evaluate("window.__pool.state.match.carom")
+    assert carom["points"][0] + carom["innings"][0] >= 2 and not carom["opening"]
+    expect(pia.get_by_test_id("carom")).to_contain_text("Pia (white)")
