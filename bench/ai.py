@@ -37,6 +37,10 @@ without jaws: a ball drops as it crosses the pocket's line; `bench/fastfiz.py`).
 highest break per frame, centuries, plan times; `--only frames`) and the ladder, `--games`
 frames each.
 
+`--kind three_cushion` plays three-cushion (`bench/carom.py`): the pro's points per inning
+over `--runouts` innings from the opening and from random positions, plan times, and the
+ladder (`--games` games to `--race` points; `--only innings,ladder`).
+
 `--kind nine_ball` plays the runouts, the greedy games and the ladder at 9-ball (the
 goals are 8-ball's): a runout starts with ball in hand after the pro's 9-ball break, the 9
 on the table, no push out; the greedy baseline shoots the lowest ball.
@@ -805,11 +809,13 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--only", default="runouts,greedy,ladder")
     parser.add_argument(
         "--kind",
-        choices=[*sorted(GAME_BALL), "snooker"],
+        choices=[*sorted(GAME_BALL), "snooker", "three_cushion"],
         default="eight_ball",
         help="the game of the runouts, the greedy games and the ladder (the goals are "
-        "8-ball's); snooker plays frames instead (`bench/snooker.py`)",
+        "8-ball's); snooker plays frames instead (`bench/snooker.py`), three_cushion "
+        "innings and games (`bench/carom.py`)",
     )
+    parser.add_argument("--race", type=int, default=5, help="three_cushion: points a game")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--jobs", type=int, default=1, help="worker processes")
     parser.add_argument("--rooms", type=int, default=2, help="computer seats (--only loop)")
@@ -851,6 +857,12 @@ def main(argv: list[str] | None = None) -> int:
         from . import snooker
 
         return snooker.main(args.games, args.seed, args.jobs, parts, args.steps)
+    if args.kind == "three_cushion":
+        from . import carom
+
+        return carom.main(
+            args.runouts, args.games, args.seed, args.jobs, parts, args.steps, args.race
+        )
     outcomes: Outcomes = {}
     before: Outcomes | None = None
     if args.paired:  # read first: a wrong path fails now, not after the games

@@ -105,9 +105,11 @@ def perturb(
         side + float(noise[2]) * level.tip,
         height + float(noise[3]) * level.tip,
     )
-    if squirt:
-        return played
-    return clamp_shot(played.angle + shot.squirt() - played.squirt(), played.speed, *played.tip)
+    if not squirt:
+        played = clamp_shot(
+            played.angle + shot.squirt() - played.squirt(), played.speed, *played.tip
+        )
+    return played if shot.ball == played.ball else replace(played, ball=shot.ball)
 
 
 # The object ball's speed and the direction of the mouth's middle -> the directions in which

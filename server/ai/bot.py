@@ -15,7 +15,7 @@ from typing import Protocol
 
 import numpy as np
 
-from server.engine import CUE, BallSet, Shot, Table, rack_slots
+from server.engine import BALL_RADIUS, CUE, BallSet, Shot, Table, rack_slots
 from server.rules import BEHIND_HEAD_STRING, Game
 from server.rules.outcome import IN_D
 from server.rules.placement import can_place
@@ -23,6 +23,7 @@ from server.rules.position import Position
 from server.rules.strategy import GameRules
 
 from .aiming import clamp_shot, perturb
+from .carom import CaromSearch, carom_level
 from .geometry import best_chance, path_clear, pockets_of
 from .levels import BY_NAME, LEVELS, Level
 from .search import Candidate, Search
@@ -140,14 +141,21 @@ class Bot:
         return self.level.name
 
     # --- execution --------------------------------------------------------------------
-    def execute(self, shot: Shot, rng: NormalSource | None = None) -> Shot:
+    def execute(
+        self, shot: Shot, rng: NormalSource | None = None, table: Table | None = None
+    ) -> Shot:
         """`shot` as this level's arm plays it: normal errors on aim, speed and tip, the
         result clamped to a valid `Shot`. `rng`: a `numpy.random.Generator` (or anything
-        with `normal()`); None plays the shot exactly."""
+        with `normal()`); None plays the shot exactly. `table`: the tip's error is in its
+        balls' radii (a carom ball is larger than a pool ball: the same millimetres are a
+        smaller fraction of it)."""
         if rng is None:
             return shot
         noise = np.array([float(rng.normal(0.0, 1.0)) for _ in range(4)])
-        return perturb(shot, noise, self.level)
+        level = self.level
+        if table is not None and table.ball_radius != BALL_RADIUS:
+            level = carom_level(level, table)
+        return perturb(shot, noise, level)
 
     # --- planning ---------------------------------------------------------------------
     def plan(self, game: Game, seat: int) -> Turn:
@@ -160,6 +168,8 @@ class Bot:
             return Turn(decision=self._decide(game))
         if game.turn != seat:
             raise ValueError("it is not this seat's turn")
+        if game.carom is not None:
+            return self._carom(game, seat)
         search = self._search(game, seat)
         search.limit = self.level.budget
         balls = game.balls
@@ -172,11 +182,26 @@ class Bot:
         self.last_sims = search.sims
         return _nominated(game, turn)
 
-    def _search(self, game: Game, seat: int) -> Search:
+    def _rng(self, game: Game, seat: int) -> np.random.Generator:
+        """The plan's random draws, seeded from the seed, the table, the seat and level."""
         level_index = LEVELS.index(self.level.name)
         digest = zlib.crc32(np.ascontiguousarray(game.balls.positions).tobytes())
         digest = zlib.crc32(np.ascontiguousarray(game.balls.states).tobytes(), digest)
-        rng = np.random.default_rng([self.seed & 0xFFFFFFFF, digest, seat, level_index])
+        return np.random.default_rng([self.seed & 0xFFFFFFFF, digest, seat, level_index])
+
+    def _carom(self, game: Game, seat: int) -> Turn:
+        """Three-cushion: the engine's search of strokes (`carom.CaromSearch`)."""
+        search = CaromSearch(
+            game.table, game.balls, game.cue_ball, self.level, self._rng(game, seat)
+        )
+        legal = game.legal_targets()
+        plan = search.plan(legal[0] if legal else None)
+        self.last_sims = plan.sims
+        kind = "safety" if plan.safety else "point"
+        return Turn(shot=plan.shot, kind=kind, target=plan.first, chance=plan.chance)
+
+    def _search(self, game: Game, seat: int) -> Search:
+        rng = self._rng(game, seat)
         noise = rng.standard_normal((self.level.samples, 4))
         confirm = rng.standard_normal((self.level.confirm_samples, 4))
         pos = game.position()

@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any, Protocol
 
 from server.codec import from_data
-from server.engine import Shot, ShotResult, simulate
+from server.engine import Shot, ShotResult, Table, simulate
 from server.rules import Game, Outcome
 
 from .bot import Bot, NormalSource, Turn
@@ -14,7 +14,7 @@ from .levels import LEVELS
 
 
 class Executor(Protocol):
-    def execute(self, shot: Shot, rng: NormalSource) -> Shot: ...
+    def execute(self, shot: Shot, rng: NormalSource, table: Table | None = None) -> Shot: ...
 
 
 def play_turn(
@@ -43,7 +43,7 @@ def play_turn(
         game.nominate(seat, turn.nominate)
     shot = turn.shot
     if bot is not None and rng is not None:
-        shot = bot.execute(shot, rng)
+        shot = bot.execute(shot, rng, game.table)
     game.check_shot(seat)
     result = simulate(game.table, game.balls, shot)
     return game.apply(seat, result), result

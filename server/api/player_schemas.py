@@ -8,7 +8,7 @@ from pydantic import BaseModel
 
 from .inputs import Name, StrictBody
 
-RankedGame = Literal["eight_ball", "nine_ball", "snooker"]
+RankedGame = Literal["eight_ball", "nine_ball", "snooker", "three_cushion"]
 
 
 class Rename(StrictBody):

@@ -55,7 +55,7 @@ _ERRORS: dict[int | str, dict[str, Any]] = {
     409: {"model": ErrorResponse},
     429: {"model": ErrorResponse},
 }
-GameParam = Annotated[str, Path(pattern="^(eight_ball|nine_ball|snooker)$")]
+GameParam = Annotated[str, Path(pattern="^(eight_ball|nine_ball|snooker|three_cushion)$")]
 
 
 async def known_player(secret: Secret, data: Players) -> Player:

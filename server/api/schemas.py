@@ -10,7 +10,15 @@ from server.ai import LEVELS
 
 from .inputs import Name, StrictBody
 
-GameKind = Literal["eight_ball", "nine_ball", "practice", "snooker", "snooker_practice"]
+GameKind = Literal[
+    "eight_ball",
+    "nine_ball",
+    "practice",
+    "snooker",
+    "snooker_practice",
+    "three_cushion",
+    "three_cushion_practice",
+]
 
 
 class CreateRoom(StrictBody):
@@ -25,7 +33,10 @@ class CreateRoom(StrictBody):
     )
     ranked: bool = Field(
         False,
-        description="rated when both players agree (8-ball/9-ball/snooker, two players, a profile)",
+        description=(
+            "rated when both players agree (8-ball/9-ball/snooker/three-cushion, two players,"
+            " a profile)"
+        ),
     )
 
     @field_validator("opponent")

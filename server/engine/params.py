@@ -9,6 +9,7 @@ et al. 2010 for the cushion, and pooltool 0.6.0's defaults (which follow DA-PP).
 from __future__ import annotations
 
 from dataclasses import dataclass, fields, replace
+from typing import Any
 
 import numpy as np
 
@@ -65,18 +66,22 @@ class PhysicsParams:
 DEFAULT_PARAMS = PhysicsParams()
 
 
-_by_ball: dict[tuple[float, float], PhysicsParams] = {}
+_by_table: dict[tuple[float, float, tuple[tuple[str, float], ...]], PhysicsParams] = {}
 
 
 def params_for(table: Table) -> PhysicsParams:
-    """The physics of `table`'s balls: `DEFAULT_PARAMS` (pool) with the table's ball radius
-    and its style's ball mass. Cloth and cushions are the pool table's: the WPBSA specifies
-    neither, and no measurement of a snooker cloth's friction was at hand to cite. The
-    same object comes back for the same balls, so the engine's caches find it by identity."""
-    key = (table.ball_radius, table.cut.ball_mass)
-    if key == (DEFAULT_PARAMS.radius, DEFAULT_PARAMS.mass):
+    """The physics of `table`'s balls: `DEFAULT_PARAMS` (pool) with the table's ball radius,
+    its style's ball mass and the cloth and cushion values its style changes (a carom
+    table's, `styles.CAROM`). A snooker table keeps the pool cloth and cushions: the WPBSA
+    specifies neither, and no measurement of a snooker cloth's friction was at hand to
+    cite. The same object comes back for the same table, so the engine's caches find it by
+    identity."""
+    cut = table.cut
+    key = (table.ball_radius, cut.ball_mass, cut.physics)
+    if key == (DEFAULT_PARAMS.radius, DEFAULT_PARAMS.mass, ()):
         return DEFAULT_PARAMS
-    found = _by_ball.get(key)
+    found = _by_table.get(key)
     if found is None:
-        found = _by_ball[key] = replace(DEFAULT_PARAMS, radius=key[0], mass=key[1])
+        changes: dict[str, Any] = dict(cut.physics)
+        found = _by_table[key] = replace(DEFAULT_PARAMS, radius=key[0], mass=key[1], **changes)
     return found

@@ -1,6 +1,6 @@
 """Racks: the triangle for 8-ball and the diamond for 9-ball, with the cue ball on the head
 spot; snooker's 15 reds behind the pink and the six colours on their spots, the cue ball in
-the D.
+the D; the three balls of carom on their start spots.
 
 Real racks are never perfect: each ball sits on a lattice slightly wider than a ball
 (0.05 mm) and is moved by a seeded jitter of at most 0.025 mm, so every neighbour gap lies
@@ -33,7 +33,9 @@ COLOURS: dict[str, int] = {
     "pink": 20,
     "black": 21,
 }
-GAMES = ("eight_ball", "nine_ball", "snooker")
+# Three-cushion's balls: the white and the yellow cue balls, and the red.
+WHITE, YELLOW, RED = 0, 1, 2
+GAMES = ("eight_ball", "nine_ball", "snooker", "three_cushion")
 
 
 def _slots(rows: list[int], table: Table) -> list[tuple[float, float]]:
@@ -110,10 +112,23 @@ def _jittered(
     return out
 
 
+def carom_placement(table: Table, opener_ball: int = WHITE) -> dict[int, tuple[float, float]]:
+    """The opening position of three-cushion (UMB Three cushion, the opening): the red on
+    the foot spot, the opponent's cue ball on the head spot, the opener's cue ball (the
+    white unless told) on the head string 182.5 mm to the right of it."""
+    spots = table.spots
+    other = YELLOW if opener_ball == WHITE else WHITE
+    return {RED: spots["foot"], other: spots["head"], opener_ball: spots["break_right"]}
+
+
 def rack(game: str, table: Table, seed: int | None = 0) -> BallSet:
     """A fresh rack for `game` ("eight_ball", "nine_ball": cue ball on the head spot;
-    "snooker": `_snooker_placement`)."""
+    "snooker": `_snooker_placement`; "three_cushion": `carom_placement`, no jitter)."""
     rng = np.random.default_rng(seed)
+    if game == "three_cushion":
+        if table.style != "carom":
+            raise ValueError("a three-cushion rack needs a carom table (Table.carom())")
+        return BallSet.place(carom_placement(table))
     if game == "snooker":
         if table.style != "snooker":
             raise ValueError("a snooker rack needs a snooker table (Table.snooker())")

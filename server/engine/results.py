@@ -163,16 +163,17 @@ class Settled:
     duration: float
     stalled_ticks: int = 0
     strike_speed: float = 0.0
+    struck: int = CUE  # the ball the cue struck (`Shot.ball`)
 
     @cached_property
     def events(self) -> list[Event]:
-        strike = Event(0.0, EventKind.STRIKE.value, (CUE,), self.strike_speed)
+        strike = Event(0.0, EventKind.STRIKE.value, (self.struck,), self.strike_speed)
         return [strike, *events_from(self.rows, self.final.ids)]
 
     def contacts(self) -> list[tuple[int, int, int, int]]:
         """`ShotResult.contacts`, read from the rows."""
         id_of = [*self.final.ids.tolist(), -1]  # a missing second ball's row -1 reads -1
-        strike = (_CODE_OF[EventKind.STRIKE.value], CUE, -1, -1)
+        strike = (_CODE_OF[EventKind.STRIKE.value], self.struck, -1, -1)
         # Every column as ints in one conversion (the time and speed, truncated, unread).
         return [strike] + [
             (code, id_of[a], id_of[b], target)

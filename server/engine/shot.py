@@ -29,7 +29,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Annotated, Any
+
+from pydantic import Field
 
 if TYPE_CHECKING:
     from pydantic import GetCoreSchemaHandler
@@ -110,8 +112,12 @@ class Shot:
     [0, MAX_ELEVATION]; a raised cue's tip must pass `check_stroke` (else `Miscue`), and
     `speed` is then the ball's speed along the cue (V cos(elevation) along the bed).
 
+    `ball` is the ball the cue strikes: the cue ball (0) in pool and snooker; in carom
+    the striker's own cue ball (the white 0 or the yellow 1).
+
     Stored and sent through the codec as `{"angle", "speed", "tip": [side, height]}`, plus
-    `"elevation"` when it is not 0 (a stored shot without it is level); loading runs
+    `"elevation"` when it is not 0 (a stored shot without it is level) and `"ball"` when it
+    is not 0 (so a pool shot's stored form is what it always was); loading runs
     `__post_init__`, so a stored or received shot is checked like a new one.
     """
 
@@ -119,6 +125,7 @@ class Shot:
     speed: float
     tip: tuple[float, float] = (0.0, 0.0)
     elevation: float = 0.0
+    ball: Annotated[int, Field(exclude_if=lambda ball: ball == 0)] = 0
 
     @classmethod
     def __get_pydantic_core_schema__(cls, source: Any, handler: GetCoreSchemaHandler) -> CoreSchema:
@@ -143,6 +150,8 @@ class Shot:
         if not 0.0 <= self.elevation <= MAX_ELEVATION:
             raise ValueError(f"elevation must be in [0, {MAX_ELEVATION:.4f}] rad")
         check_stroke(self.tip, self.elevation)
+        if not isinstance(self.ball, int) or isinstance(self.ball, bool) or self.ball < 0:
+            raise ValueError("the struck ball must be a ball id")
 
     def squirt(self, mass_ratio: float = DEFAULT_CUE_MASS_RATIO) -> float:
         """The squirt angle in radians, positive to the left of the aim line (right

@@ -75,9 +75,12 @@ def _params_array(params: PhysicsParams) -> np.ndarray:
     return values
 
 
-def _cue_row(balls: BallSet) -> int:
-    """The cue ball's row; ValueError when it is not on the table."""
-    row = balls.index(CUE)
+def _cue_row(balls: BallSet, ball: int = CUE) -> int:
+    """The struck ball's row; ValueError when it is not on the table."""
+    try:
+        row = balls.index(ball)
+    except KeyError:
+        raise ValueError(f"ball {ball} is not in the set") from None
     if balls.states[row] == POCKETED:
         raise ValueError("the cue ball is not on the table")
     return row
@@ -86,14 +89,15 @@ def _cue_row(balls: BallSet) -> int:
 def strike(
     balls: BallSet, shot: Shot, params: PhysicsParams = DEFAULT_PARAMS, time: float = 0.0
 ) -> Event:
-    """Give the cue ball the shot's velocity and spin (in place); returns the strike event."""
-    row = _cue_row(balls)
+    """Give the struck ball (`shot.ball`, the cue ball) the shot's velocity and spin (in
+    place); returns the strike event."""
+    row = _cue_row(balls, shot.ball)
     (vx, vy), (wx, wy, wz) = shot.cue_ball_motion(params.radius, params.cue_mass_ratio)
     strike_ball(
         balls.velocities, balls.spins, balls.states, balls.heights, row, vx, vy, wx, wy, wz,
         shot.downward_speed(), _params_array(params),
     )  # fmt: skip
-    return Event(time, _STRIKE, (CUE,), float(shot.speed))
+    return Event(time, _STRIKE, (shot.ball,), float(shot.speed))
 
 
 _STRIKE = EventKind.STRIKE.value
@@ -274,7 +278,7 @@ def settle(
     bit, in about two fifths of the time for the short shots a search tries (less is saved
     on a break, whose many events cost the same either way). `balls` is not modified."""
     params = params if params is not None else params_for(table)
-    row = _cue_row(balls)
+    row = _cue_row(balls, shot.ball)
     (vx, vy), (wx, wy, wz) = shot.cue_ball_motion(params.radius, params.cue_mass_ratio)
     geo, dt = _geometry(table), float(tick)
     *arrays, rows, stalls, ticks = settle_kernel(
@@ -284,7 +288,7 @@ def settle(
         _params_array(params), dt, int(MAX_SHOT_SECONDS / dt), _EVENT_CAPACITY,
     )  # fmt: skip
     final = BallSet.of_arrays(balls.ids.copy(), *arrays)
-    return Settled(rows, final, ticks * dt, int(stalls), float(shot.speed))
+    return Settled(rows, final, ticks * dt, int(stalls), float(shot.speed), shot.ball)
 
 
 def run_to_rest(

@@ -76,18 +76,26 @@ POOL_SPOTS = (Spot("head", fraction=0.25), Spot("foot", fraction=0.75))
 class TableStyle:
     """How one kind of table is cut and marked.
 
-    corner / side: its pockets. ball_mass: kg. baulk_line: distance of the line across the
+    corner / side: its pockets (None: a table without pockets, four whole cushions).
+    ball_mass: kg. physics: `PhysicsParams` fields whose value differs on this table (its
+    cloth, its cushions), as (name, value) pairs. baulk_line: distance of the line across the
     table from the head (baulk) cushion in m, or None for the pool head string (a quarter
     of the length). d_radius: the D's radius (m), 0 without one. spots: the named spots.
     """
 
     name: str
-    corner: PocketCut
-    side: PocketCut
+    corner: PocketCut | None
+    side: PocketCut | None
     ball_mass: float
     baulk_line: float | None = None
     d_radius: float = 0.0
     spot_rules: tuple[Spot, ...] = POOL_SPOTS
+    physics: tuple[tuple[str, float], ...] = ()
+
+    @property
+    def pocketed(self) -> bool:
+        """The table has pockets."""
+        return self.corner is not None and self.side is not None
 
     def head_line(self, length: float) -> float:
         """x of the line across the table at the head end (head string, baulk line)."""
@@ -125,5 +133,39 @@ SNOOKER = TableStyle(
         Spot("blue", fraction=0.5),
         Spot("pink", fraction=0.75),
         Spot("black", from_foot=0.324),
+    ),
+)
+
+
+# Carom (UMB, "Règlement sportif / Sporting Code", Carom billiards, Equipment: the match
+# table's playing area 2840 x 1420 mm measured between the cushion noses, balls 61 to
+# 61.5 mm and 205 to 220 g, cushion height 37 mm +- 1 mm). The start spots (UMB, Three
+# cushion, "position of the balls at the opening"): the red on the top (foot) spot, the
+# opponent's cue ball on the head spot, the opener's on the head string 182.5 mm to one
+# side of it (pooltool 0.6.0's three-cushion layout puts it on the same spot).
+# Balls and cloth: pooltool 0.6.0's BILLIARD_GENERIC ball parameters (R 30.75 mm, 210 g,
+# u_s 0.2, u_r 0.01, e_c 0.85, f_c 0.15) and its billiard table's cushion height (37 mm):
+# the nose is 37 / 61.5 = 60.2 % of the ball's height (a pool nose is 63.5 %).
+CAROM_BREAK_OFFSET = 0.1825
+CAROM_CUSHION_HEIGHT = 0.037
+CAROM_BALL_DIAMETER = 0.0615
+CAROM = TableStyle(
+    "carom",
+    corner=None,
+    side=None,
+    ball_mass=0.210,
+    spot_rules=(
+        Spot("head", fraction=0.25),
+        Spot("center", fraction=0.5),
+        Spot("foot", fraction=0.75),
+        # Seen from the head end the opener's right is -y.
+        Spot("break_right", fraction=0.25, across=-CAROM_BREAK_OFFSET),
+        Spot("break_left", fraction=0.25, across=CAROM_BREAK_OFFSET),
+    ),
+    physics=(
+        ("cushion_nose", CAROM_CUSHION_HEIGHT / CAROM_BALL_DIAMETER),
+        ("f_cushion", 0.15),
+        # pooltool's spinning friction, u_sp = 10 * 2 / 5 / 9 R, for this R.
+        ("u_spin", 10 * 2 / 5 / 9 * CAROM_BALL_DIAMETER / 2),
     ),
 )

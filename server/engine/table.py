@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING, Annotated, Any
 import numpy as np
 from pydantic import Field
 
-from .styles import SNOOKER, Arc, PocketCut, TableStyle
+from .styles import CAROM, CAROM_BALL_DIAMETER, SNOOKER, Arc, PocketCut, TableStyle
 
 if TYPE_CHECKING:
     from pydantic import GetCoreSchemaHandler
@@ -59,7 +59,7 @@ POOL = TableStyle(
     side=PocketCut(SIDE_FACING_DEG, SIDE_SHELF, SIDE_HOLE),
     ball_mass=BALL_MASS,
 )
-STYLES: dict[str, TableStyle] = {style.name: style for style in (POOL, SNOOKER)}
+STYLES: dict[str, TableStyle] = {style.name: style for style in (POOL, SNOOKER, CAROM)}
 
 # Snooker (WPBSA Section 1 Equipment; `styles.py`): playing area, ball radius, and the
 # jaw-to-jaw mouths our sharp points need to accept what pooltool's rounded snooker jaws do.
@@ -67,6 +67,9 @@ SNOOKER_SIZE = (3.569, 1.778)
 SNOOKER_BALL_RADIUS = 0.02625
 SNOOKER_CORNER_MOUTH = 0.094
 SNOOKER_SIDE_MOUTH = 0.128
+# Carom (UMB; `styles.py`): the match table's playing area and the ball's radius.
+CAROM_SIZE = (2.84, 1.42)
+CAROM_BALL_RADIUS = CAROM_BALL_DIAMETER / 2
 
 
 def style_named(name: str) -> TableStyle:
@@ -156,6 +159,12 @@ class Table:
             style=SNOOKER.name,
         )
 
+    @classmethod
+    def carom(cls) -> Table:
+        """The UMB match carom table: 2840 x 1420 mm, 61.5 mm balls, no pockets."""
+        length, width = CAROM_SIZE
+        return cls(length, width, CAROM_BALL_RADIUS, 0.0, 0.0, style=CAROM.name)
+
     @property
     def cut(self) -> TableStyle:
         """The style this table is cut and marked in."""
@@ -234,7 +243,10 @@ class Table:
 
     @property
     def jaws(self) -> tuple[tuple[float, float], ...]:
-        """Every jaw point (the ends of the cushions)."""
+        """Every jaw point (the ends of the cushions); none on a table without pockets,
+        whose cushions meet in its corners."""
+        if not self.pockets:
+            return ()
         return tuple(p for c in self.cushions for p in (c.start, c.end))
 
     def contains(self, x: float, y: float, margin: float = 0.0) -> bool:
@@ -271,15 +283,16 @@ class Table:
             if nx * mx + ny * my < 0:
                 nx, ny = -nx, -ny
             rows.append([jx, jy, ex, ey, nx, ny])
-        return np.array(rows, dtype=np.float64)
+        return np.array(rows, dtype=np.float64).reshape(len(rows), 6)
 
     def pocket_array(self) -> np.ndarray:
         """(P, 3) float64: hole centre x, y and radius of each pocket."""
-        return np.array([[*p.hole, p.hole_radius] for p in self.pockets], dtype=np.float64)
+        rows = [[*p.hole, p.hole_radius] for p in self.pockets]
+        return np.array(rows, dtype=np.float64).reshape(len(rows), 3)
 
     def pocket_centers(self) -> np.ndarray:
         """(P, 2) float64 drawn centres (where a pocketed ball rests)."""
-        return np.array([p.center for p in self.pockets], dtype=np.float64)
+        return np.array([p.center for p in self.pockets], dtype=np.float64).reshape(-1, 2)
 
     def to_dict(self) -> dict[str, Any]:
         """Plain data for clients: sizes, cushions, jaws and pockets."""
@@ -335,6 +348,8 @@ def _build_geometry(
     ball_radius: float,
     style: TableStyle = POOL,
 ) -> tuple[tuple[Cushion, ...], tuple[Pocket, ...]]:
+    if style.corner is None or style.side is None:
+        return _closed_cushions(length, width), ()
     a = corner_mouth / math.sqrt(2.0)  # each corner jaw's distance from the corner
     s = side_mouth / 2.0
     mid = length / 2.0
@@ -399,3 +414,14 @@ def _build_geometry(
             Pocket(name, jaws, (ux, uy), center, drawn_r, shelf, tuple(facings), hole_center, hole)
         )
     return cushions, tuple(pockets)
+
+
+def _closed_cushions(length: float, width: float) -> tuple[Cushion, ...]:
+    """The four whole cushions of a table without pockets, in the pool table's order
+    (bottom, right, top, left), meeting in the corners."""
+    return (
+        Cushion((0.0, 0.0), (length, 0.0), (0.0, 1.0)),  # bottom
+        Cushion((length, 0.0), (length, width), (-1.0, 0.0)),  # right (foot)
+        Cushion((length, width), (0.0, width), (0.0, -1.0)),  # top
+        Cushion((0.0, width), (0.0, 0.0), (1.0, 0.0)),  # left (head)
+    )

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field, replace
 
 from .glicko2 import Rating, idle, rate
 
-RANKED_KINDS: tuple[str, ...] = ("eight_ball", "nine_ball", "snooker")
+RANKED_KINDS: tuple[str, ...] = ("eight_ball", "nine_ball", "snooker", "three_cushion")
 RATING_PERIOD = 86_400.0  # s: one day, the period of the deviation's growth
 PROVISIONAL_RD = 110.0  # a rating is provisional while its deviation is above this
 

@@ -306,7 +306,7 @@ class ComputerSeat:
         shot = None
         if turn.shot is not None and turn.decision is None:
             rng = np.random.default_rng([self.room.seed, self.room.shots_played])
-            shot = self.bot.execute(turn.shot, rng)
+            shot = self.bot.execute(turn.shot, rng, match.game.table)
             for step in range(1, AIM_STEPS + 1):  # the cue swings round and draws back
                 relay(shot.angle, min(1.0, step / AIM_STEPS * shot.speed / 12.0))
                 await asyncio.sleep(0.12 / pace)

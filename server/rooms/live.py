@@ -9,6 +9,7 @@ simulated and shown (`ShotPlayer`), the computer's seats (`ComputerTurns`) and t
 from __future__ import annotations
 
 import logging
+from dataclasses import replace
 from typing import assert_never
 
 from server.config import Settings
@@ -293,6 +294,7 @@ class LiveRoom:
         `intended`: the stroke meant, when it differs (the computer's plan), for the record."""
         shot_id, before = self.room.begin_shot(seat, intended)
         assert seat is not None
+        shot = replace(shot, ball=self.room.cue_ball())  # carom: the striker's own ball
         self.timers.cancel_clock()
         kept = self.observer.shot_started(self.room, seat, shot, shot_id)
         self.shots.start(seat, shot, shot_id, before, kept)

@@ -355,6 +355,10 @@ class Room:
         )
         return self.shots_played, match.game.balls.copy()
 
+    def cue_ball(self) -> int:
+        """The ball the striker strikes (`Game.cue_ball`: carom's white or yellow)."""
+        return self.match.game.cue_ball if self.match else 0
+
     def apply_shot(self, result: ShotResult) -> Outcome:
         """Judge the simulated shot now (the stream shows it afterwards)."""
         assert self.shot is not None and self.match is not None

@@ -18,6 +18,7 @@ from pydantic import Field
 from server.codec import from_data, to_dict
 from server.engine import CUE, BallSet, ShotResult, Table, rack
 
+from .carom_score import CaromScore
 from .errors import IllegalActionError
 from .fouls import label
 from .kinds import rules_for
@@ -57,7 +58,8 @@ class Game:
     mutating it). `pending` names the pending decision's kind and `after_decision_bih` the
     ball in hand once it is taken. `score` is a snooker frame's points, break and ball on
     (`points` reads them); `replaced` / `replaced_on` the table and ball on before a miss,
-    for the decision to replace the balls. Start a game with `Game.new`.
+    for the decision to replace the balls. `carom` is a three-cushion game's points,
+    innings and runs (`points` reads them). Start a game with `Game.new`.
     """
 
     kind: str
@@ -87,6 +89,7 @@ class Game:
     score: Annotated[FrameScore | None, _UNLESS_SET] = None
     replaced: Annotated[BallSet | None, _UNLESS_SET] = None
     replaced_on: Annotated[str | None, _UNLESS_SET] = None
+    carom: Annotated[CaromScore | None, _UNLESS_SET] = None
 
     @classmethod
     def new(
@@ -138,12 +141,21 @@ class Game:
         self.push_out_available = False
         self.push_out_declared = False
         self.score = rules.new_score(len(self.players))
+        self.carom = rules.new_carom(breaker)
         self.replaced, self.replaced_on = None, None
 
     @property
     def points(self) -> tuple[int, ...]:
-        """Each seat's points in the frame (snooker; zeros for the pool games)."""
+        """Each seat's points in the frame (snooker), in the game (three-cushion); zeros
+        for the pool games."""
+        if self.carom is not None:
+            return self.carom.points
         return self.score.points if self.score else (0,) * len(self.players)
+
+    @property
+    def cue_ball(self) -> int:
+        """The ball the striker strikes: the cue ball (0), or in carom the striker's."""
+        return self.rules.cue_ball(self.position())
 
     # --- what is legal now -------------------------------------------------------------
     def position(self) -> Position:
@@ -162,6 +174,7 @@ class Game:
             push_out_declared=self.push_out_declared,
             score=self.score,
             balls=self.balls,
+            carom=self.carom,
         )
 
     @property
@@ -327,7 +340,10 @@ class Game:
         self.check_shot(seat)
         if list(result.final.ids) != list(self.balls.ids):
             raise IllegalActionError("bad_result", "The shot was not played on this table.")
-        facts = shot_facts(self.balls, result)
+        cue = self.cue_ball
+        if result.events and result.events[0].ids[0] != cue:
+            raise IllegalActionError("wrong_cue_ball", "That is not your cue ball.")
+        facts = shot_facts(self.balls, result, cue)
         ruling = self.rules.judge(self.position(), facts)
         pocketed = facts.pocketed + ((CUE,) if facts.scratch and not facts.cue_off_table else ())
         if facts.pocketed:
@@ -395,6 +411,8 @@ class Game:
             self.groups = dict(ruling.groups)
         if ruling.score is not None:
             self.score = ruling.score
+        if ruling.carom is not None:
+            self.carom = ruling.carom
         parts = []
         if fouled:
             parts.append(f"Foul: {and_list(label(f) for f in ruling.fouls)}.")
@@ -516,4 +534,27 @@ class Game:
             state["points"] = list(self.points)
             state["nominations"] = [] if self.over or self.decision else rules.nominations(pos)
             state["frame"] = scoreboard(pos)
+        if self.carom is not None:  # three-cushion's scoreboard
+            state["points"] = list(self.points)
+            state["carom"] = self._carom_board()
         return state
+
+    def _carom_board(self) -> dict[str, Any]:
+        """Three-cushion's scoreboard: points, innings, average, high run, the run, each
+        seat's cue ball and the cushions the last stroke's cue ball met before its second
+        ball."""
+        carom = self.carom
+        assert carom is not None
+        seats = range(len(self.players))
+        return {
+            "points": list(carom.points),
+            "innings": list(carom.innings),
+            "average": [round(carom.average(s), 3) for s in seats],
+            "high_run": list(carom.high_run),
+            "run": carom.run,
+            "race_to": carom.race_to,
+            "equal_innings": carom.equal_innings,
+            "last_inning": carom.last_inning,
+            "cue_balls": [carom.cue_ball(s) for s in seats],
+            "opening": carom.opening,
+        }

@@ -12,6 +12,7 @@ from .nine_ball import NineBallRules
 from .practice import PracticeRules, SnookerPracticeRules
 from .snooker import SnookerRules
 from .strategy import GameRules
+from .three_cushion import ThreeCushionPracticeRules, ThreeCushionRules
 
 STRATEGIES: tuple[GameRules, ...] = (
     EightBallRules(),
@@ -19,6 +20,8 @@ STRATEGIES: tuple[GameRules, ...] = (
     PracticeRules(),
     SnookerRules(),
     SnookerPracticeRules(),
+    ThreeCushionRules(),
+    ThreeCushionPracticeRules(),
 )
 RULES: dict[str, GameRules] = {rules.kind: rules for rules in STRATEGIES}
 GAME_KINDS = tuple(RULES)

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 
 from server.engine import CUE, BallSet, Table
 
+from .carom_score import CaromScore
 from .options import RuleOptions
 from .snooker_score import FrameScore
 
@@ -24,6 +25,7 @@ class Position:
     seat. called_pocket: 8-ball, the pocket called for the 8. push_out_declared: 9-ball,
     the next shot is a push out. score: snooker, the frame's points, break and ball on.
     balls: the table at rest (the referee's eye: whether the striker is snookered).
+    carom: three-cushion, the game's points, innings and runs.
     """
 
     players: tuple[str, ...]
@@ -38,6 +40,7 @@ class Position:
     push_out_declared: bool = False
     score: FrameScore | None = None
     balls: BallSet | None = field(default=None, compare=False, repr=False)
+    carom: CaromScore | None = None
 
     @property
     def shooter(self) -> str:

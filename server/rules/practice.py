@@ -81,4 +81,4 @@ class SnookerPracticeRules(PracticeRules):
         return and_list(snooker_ball(b) for b in ball_ids)
 
 
-PRACTICE_KINDS = ("practice", "snooker_practice")
+PRACTICE_KINDS = ("practice", "snooker_practice", "three_cushion_practice")

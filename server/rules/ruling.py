@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from .carom_score import CaromScore
 from .outcome import Decision, Foul
 from .snooker_score import FrameScore
 
@@ -22,7 +23,7 @@ class Ruling:
     push_out_next: 9-ball, the next shot may be a push out. break_passes_to: the next shot
     is a break again, by this seat (the shot clock ran out on the break).
     score: the frame's points after the shot (snooker). miss: the foul was a miss, so the
-    balls may be replaced (snooker).
+    balls may be replaced (snooker). carom: the game's score after the shot (three-cushion).
     """
 
     fouls: list[Foul] = field(default_factory=list)
@@ -39,3 +40,4 @@ class Ruling:
     break_passes_to: int | None = None
     score: FrameScore | None = None
     miss: bool = False
+    carom: CaromScore | None = None

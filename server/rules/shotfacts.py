@@ -3,6 +3,7 @@
 A ball the engine put out of play is pocketed, or off the table (a jump that cleared a
 rail: its pocket is `OFF_TABLE`); the cue ball off the table is a scratch (WPA General
 Rules, "cue ball scratch or off the table").
+The struck ball is the cue ball (0) unless told (carom: the striker's white or yellow).
 """
 
 from __future__ import annotations
@@ -32,6 +33,7 @@ class ShotFacts:
     balls_to_rail: distinct object balls that reached a cushion (counts for a legal break).
     off_table: object balls that left the table (never in `pocketed`), in id order.
     cue_off_table: the cue ball left the table (a scratch).
+    cue_path: what the struck ball met, in order: a ball's id, or -1 for a cushion (carom).
     final: the table at rest after the shot, before the rules re-spot anything (not a
     fact compared: the facts of a settled and a simulated shot are equal).
     """
@@ -44,6 +46,7 @@ class ShotFacts:
     balls_to_rail: frozenset[int]
     off_table: tuple[int, ...] = ()
     cue_off_table: bool = False
+    cue_path: tuple[int, ...] = ()
     final: BallSet | None = field(default=None, compare=False, repr=False)
 
     @property
@@ -51,7 +54,7 @@ class ShotFacts:
         return bool(self.pocketed)
 
 
-def shot_facts(before: BallSet, result: ShotResult | Settled) -> ShotFacts:
+def shot_facts(before: BallSet, result: ShotResult | Settled, cue: int = CUE) -> ShotFacts:
     """Facts of `result`, a shot played from the table `before` (its final table has
     `before`'s rows, as the engine keeps them).
 
@@ -64,28 +67,27 @@ def shot_facts(before: BallSet, result: ShotResult | Settled) -> ShotFacts:
     order: list[int] = []
     pockets: dict[int, int] = {}
     to_rail: set[int] = set()
+    path: list[int] = []
     for code, ball, other, target in result.contacts():
         if code == _BALL:
-            if not contact_seen and (ball == CUE or other == CUE):
-                first_contact = other if ball == CUE else ball
-                contact_seen = True
+            if ball == cue or other == cue:
+                met = other if ball == cue else ball
+                path.append(met)
+                if not contact_seen:
+                    first_contact = met
+                    contact_seen = True
         elif code in (_CUSHION, _JAW):  # a pocket's point is a rail too
             if contact_seen:
                 rail_after_contact = True
-            if ball != CUE:
+            if ball != cue:
                 to_rail.add(ball)
+            else:
+                path.append(-1)
         elif code == _POCKET and ball not in pockets:
             order.append(ball)
             pockets[ball] = target
     final = result.final
-    gone = (before.states != _POCKETED) & (final.states == _POCKETED)
-    flown: set[int] = set()
-    if gone.any():
-        off = gone & (final.pockets == OFF_TABLE)
-        if off.any():
-            flown = set(final.ids[off].tolist())
-            gone = gone & ~off
-    dropped = set(final.ids[gone].tolist()) if gone.any() else set()
+    dropped, flown = _out_of_play(before, final)
     if dropped != pockets.keys():
         for ball in sorted(dropped - set(order)):
             order.append(ball)
@@ -95,11 +97,22 @@ def shot_facts(before: BallSet, result: ShotResult | Settled) -> ShotFacts:
     return ShotFacts(
         first_contact=first_contact,
         rail_after_contact=rail_after_contact,
-        pocketed=tuple(b for b in order if b != CUE),
+        pocketed=tuple(b for b in order if b != cue),
         pockets=pockets,
-        scratch=CUE in dropped or CUE in flown,
+        scratch=cue in dropped or cue in flown,
         balls_to_rail=frozenset(to_rail),
-        off_table=tuple(sorted(flown - {CUE})),
-        cue_off_table=CUE in flown,
+        off_table=tuple(sorted(flown - {cue})),
+        cue_off_table=cue in flown,
+        cue_path=tuple(path),
         final=final,
     )
+
+
+def _out_of_play(before: BallSet, final: BallSet) -> tuple[set[int], set[int]]:
+    """The balls the shot put out of play: those that dropped into a pocket, and those
+    that left the table (pocket `OFF_TABLE`)."""
+    gone = (before.states != _POCKETED) & (final.states == _POCKETED)
+    if not gone.any():
+        return set(), set()
+    off = gone & (final.pockets == OFF_TABLE)
+    return set(final.ids[gone & ~off].tolist()), set(final.ids[off].tolist())

@@ -6,9 +6,10 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Protocol
 
-from server.engine import BallSet, Table
+from server.engine import CUE, BallSet, Table
 
 from . import spotting, words
+from .carom_score import CaromScore
 from .position import Position
 from .ruling import Ruling
 from .shotfacts import ShotFacts
@@ -40,8 +41,8 @@ class GameRules(Protocol):
         ...
 
     @property
-    def opening_ball_in_hand(self) -> str:
-        """Where the cue ball may go for a rack's first shot."""
+    def opening_ball_in_hand(self) -> str | None:
+        """Where the cue ball may go for a rack's first shot (None: it stays on its spot)."""
         ...
 
     @property
@@ -91,6 +92,14 @@ class GameRules(Protocol):
     def new_score(self, seats: int) -> FrameScore | None:  # noqa: ARG002 - pool keeps none
         """The points kept in a frame (snooker), None for a game won by its last ball."""
         return None
+
+    def new_carom(self, opener: int) -> CaromScore | None:  # noqa: ARG002 - pool keeps none
+        """The score of a carom game opened by `opener` (three-cushion), None otherwise."""
+        return None
+
+    def cue_ball(self, pos: Position) -> int:  # noqa: ARG002 - pool has one cue ball
+        """The ball the striker strikes (carom: the striker's white or yellow)."""
+        return CUE
 
     def nominations(self, pos: Position) -> list[int]:  # noqa: ARG002 - pool has none
         """The balls the striker may nominate now (snooker: a colour, a free ball)."""

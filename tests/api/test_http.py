@@ -52,7 +52,7 @@ def test_create_room_returns_short_unguessable_id(client):
 @pytest.mark.parametrize(
     "body",
     [
-        {"game": "three_cushion"},
+        {"game": "four_ball"},
         {"race_to": 3},
         {"game": "eight_ball", "race_to": 0},
         {"game": "eight_ball", "race_to": 16},

@@ -341,7 +341,12 @@ def test_a_ranked_match_ended_before_any_shot_is_not_rated(clocked_client):
         state_where(wb, lambda s: s["match"]["match_over"])
     for player in (ana, ben):
         profile = player.call("GET", "/api/players/me").json()
-        assert [r["games"] for r in profile["ratings"]] == [0, 0, 0]  # 8-ball, 9-ball, snooker
+        assert [r["games"] for r in profile["ratings"]] == [
+            0,
+            0,
+            0,
+            0,
+        ]  # 8-ball, 9-ball, snooker, three-cushion
         assert profile["recent"] == []
     assert clocked_client.get("/api/leaderboard/eight_ball").json()["provisional"] == []
 
@@ -358,8 +363,13 @@ def test_a_concession_before_the_other_side_played_is_not_rated(clocked_client):
         assert over["match"]["match_winner"] == 0  # the game is won, not rated
     for player in (ana, ben):
         profile = player.call("GET", "/api/players/me").json()
-        assert [r["games"] for r in profile["ratings"]] == [0, 0, 0]  # 8-ball, 9-ball, snooker
-        assert [r["rating"] for r in profile["ratings"]] == [1500, 1500, 1500]
+        assert [r["games"] for r in profile["ratings"]] == [
+            0,
+            0,
+            0,
+            0,
+        ]  # 8-ball, 9-ball, snooker, three-cushion
+        assert [r["rating"] for r in profile["ratings"]] == [1500, 1500, 1500, 1500]
 
 
 def test_play_now_never_pairs_two_players_from_one_address(settings, clock):
@@ -490,6 +500,11 @@ def test_a_ranked_room_brought_back_after_a_restart_is_still_rated(settings, clo
                 assert over["match"]["match_winner"] == 1
         mine = ana.call("GET", "/api/players/me").json()
         theirs = ben.call("GET", "/api/players/me").json()
-    assert [r["games"] for r in mine["ratings"]] == [1, 0, 0]  # 8-ball, 9-ball, snooker
+    assert [r["games"] for r in mine["ratings"]] == [
+        1,
+        0,
+        0,
+        0,
+    ]  # 8-ball, 9-ball, snooker, three-cushion
     assert mine["ratings"][0]["rating"] < 1500 < theirs["ratings"][0]["rating"]
     assert theirs["recent"][0]["won"] and not mine["recent"][0]["won"]

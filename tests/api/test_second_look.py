@@ -69,7 +69,7 @@ def test_a_refused_name_is_one_plain_sentence(clocked_client, name, sentence):
 
 
 def test_other_refusals_keep_their_usual_answer(clocked_client):
-    refused = clocked_client.post("/api/rooms", json={"game": "three_cushion"})
+    refused = clocked_client.post("/api/rooms", json={"game": "four_ball"})
     assert refused.status_code == 422
     assert isinstance(refused.json()["detail"], list)
 

@@ -47,7 +47,7 @@ def in_play_area(table, positions: np.ndarray, tol: float = 1e-9) -> np.ndarray:
     and from the jaw points, and not over the hole, where it would have dropped)."""
     r = table.ball_radius
     p = np.asarray(positions, dtype=float).reshape(-1, 2)
-    jaws = np.array(table.jaws)
+    jaws = np.array(table.jaws).reshape(-1, 2)
     clear_of_points = (np.linalg.norm(p[:, None] - jaws[None], axis=2) >= r - tol).all(axis=1)
     ok = (
         (p[:, 0] >= -tol)

@@ -101,7 +101,7 @@ def test_a_name_of_24_characters_is_fine_and_seats_without_a_player_are_named() 
 
 def test_unknown_game_and_practice_settings() -> None:
     with pytest.raises(ValueError):
-        Room("r00m1d_abcde", "three_cushion")
+        Room("r00m1d_abcde", "four_ball")
     practice = Room("practice_id0", "practice", race_to=5, shot_clock=30.0)
     assert (practice.seats, practice.race_to, practice.shot_clock) == ([None], 1, 0.0)
     practice.join("Pia")
@@ -306,3 +306,17 @@ def test_a_snooker_practice_table_has_one_seat_and_the_snooker_table() -> None:
     practice.join("Pia")
     assert practice.phase == "aiming" and practice.match is not None
     assert practice.match.game.table.style == "snooker"
+
+
+def test_three_cushion_rooms_have_the_carom_table_and_strike_the_strikers_ball() -> None:
+    room = Room("carom_id0001", "three_cushion", race_to=1, shot_clock=30.0)
+    room.join("Ana")
+    room.join("Ben")
+    assert room.match is not None and room.match.game.table.style == "carom"
+    assert room.cue_ball() == 0
+    room.match.game.turn = 1
+    assert room.cue_ball() == 1
+    practice = Room("practice_id2", "three_cushion_practice", race_to=3, shot_clock=30.0)
+    assert practice.seats == [None]
+    practice.join("Pia")
+    assert practice.match is not None and practice.cue_ball() == 0

@@ -41,7 +41,15 @@ def facts(
 
 # --- lookup ----------------------------------------------------------------------------
 def test_one_strategy_per_kind_looked_up_by_its_kind() -> None:
-    assert GAME_KINDS == ("eight_ball", "nine_ball", "practice", "snooker", "snooker_practice")
+    assert GAME_KINDS == (
+        "eight_ball",
+        "nine_ball",
+        "practice",
+        "snooker",
+        "snooker_practice",
+        "three_cushion",
+        "three_cushion_practice",
+    )
     for kind in GAME_KINDS:
         assert rules_for(kind).kind == kind and RULES[kind] is rules_for(kind)
     assert (type(EIGHT), type(NINE), type(PRACTICE)) == (
@@ -49,10 +57,10 @@ def test_one_strategy_per_kind_looked_up_by_its_kind() -> None:
         NineBallRules,
         PracticeRules,
     )
-    with pytest.raises(ValueError, match="unknown game 'three_cushion'"):
-        rules_for("three_cushion")
+    with pytest.raises(ValueError, match="unknown game 'four_ball'"):
+        rules_for("four_ball")
     with pytest.raises(ValueError, match="unknown game"):
-        Game.new("three_cushion", ("Ana", "Bob"))
+        Game.new("four_ball", ("Ana", "Bob"))
 
 
 @pytest.mark.parametrize(

@@ -150,10 +150,11 @@ def random_balls(rng: np.random.Generator, balls: BallSet) -> BallSet:
 
 def random_game(rng: np.random.Generator, kind: str | None = None) -> Game:
     kind = kind or str(rng.choice(GAME_KINDS))
-    solo = kind in ("practice", "snooker_practice")
+    solo = kind in ("practice", "snooker_practice", "three_cushion_practice")
     players = ("Ana",) if solo else ("Ana", "Bob")
     table = Table.pool(str(rng.choice(["7ft", "8ft", "9ft"])))
     table = Table.snooker() if kind.startswith("snooker") else table
+    table = Table.carom() if kind.startswith("three_cushion") else table
     options = RuleOptions(bool(rng.integers(2)))
     game = Game.new(kind, players, table=table, seed=int(rng.integers(1000)), options=options)
     seat = int(rng.integers(len(players)))

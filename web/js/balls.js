@@ -34,6 +34,14 @@ export const SNOOKER_COLORS = {
 };
 const SNOOKER_RED = '#c8141b';
 
+/**
+ * Carom's balls (the server's ids): the white and the yellow cue balls, and the red.
+ * @type {Record<number, string>}
+ */
+export const CAROM_COLORS = { 0: '#f7f3e6', 1: '#f4c20d', 2: '#c8141b' };
+/** @type {Record<number, string>} */
+export const CAROM_NAMES = { 0: 'white', 1: 'yellow', 2: 'red' };
+
 /** @type {Record<number, string>} snooker colours by id, as players name them */
 export const SNOOKER_NAMES = {
   16: 'yellow', 17: 'green', 18: 'brown', 19: 'blue', 20: 'pink', 21: 'black',
@@ -53,15 +61,16 @@ export function isStripe(id, style = 'pool') {
  */
 export function ballColor(id, style = 'pool') {
   if (style === 'snooker') return SNOOKER_COLORS[id] ?? SNOOKER_RED;
+  if (style === 'carom') return CAROM_COLORS[id] ?? SNOOKER_RED;
   return BALL_COLORS[id >= 9 ? id - 8 : id];
 }
 
 /**
- * A practice table's kind (one player, no race): on the pool or the snooker table.
+ * A practice table's kind (one player, no race): on the pool, snooker or carom table.
  * @param {string | null | undefined} kind
  */
 export function isPractice(kind) {
-  return kind === 'practice' || kind === 'snooker_practice';
+  return kind === 'practice' || kind === 'snooker_practice' || kind === 'three_cushion_practice';
 }
 
 /**
@@ -78,6 +87,7 @@ export function snookerBallName(id) {
  * @returns {number[]}
  */
 export function ballIds(style = 'pool') {
+  if (style === 'carom') return [0, 1, 2];
   return [...Array(style === 'snooker' ? 22 : 16).keys()];
 }
 

@@ -62,9 +62,12 @@ export function describeHint(hint, maxSpeed) {
     else if (hint.via === 'billiard') what = `Glance the cue ball off the first ball into the ${hint.target}`;
   }
   else if (hint.kind === 'kick') what = 'Kick at it off a cushion';
+  else if (hint.kind === 'point') what = 'Score the point';
   else if (hint.kind === 'break') what = 'Break';
   const odds = hint.kind === 'pot' && hint.chance !== null
-    ? ` (${Math.round(hint.chance * 100)} % of the computer's trials went in)` : '';
+    ? ` (${Math.round(hint.chance * 100)} % of the computer's trials went in)`
+    : hint.kind === 'point' && hint.chance !== null
+      ? ` (${Math.round(hint.chance * 100)} % of the computer's trials scored)` : '';
   const power = Math.round(powerFromSpeed(hint.speed, maxSpeed) * 100);
   return `${what}${odds}: power ${power} %, ${spinWords(hint.tip)}.`;
 }

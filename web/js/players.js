@@ -11,6 +11,7 @@ export const RANKED_GAMES = /** @type {const} */ ([
   ['eight_ball', '8-ball'],
   ['nine_ball', '9-ball'],
   ['snooker', 'Snooker'],
+  ['three_cushion', 'Three-cushion'],
 ]);
 
 /** @param {string} game */

@@ -70,9 +70,17 @@ export function cushionBacks(table) {
   const near = (p, q) => Math.hypot(p[0] - q[0], p[1] - q[1]) < 1e-9;
   /** @param {Vec} j */
   const pocketAtJaw = (j) => table.pockets.find((p) => p.jaws && p.jaws.some((q) => near(q, j)));
+  /** @param {{start: Vec, end: Vec}} c @param {Vec} j */
+  const meeting = (c, j) => table.cushions.find((o) => o !== c
+    && (near(o.start, j) || near(o.end, j)));
   return table.cushions.map((c) => {
     const [nx, ny] = c.normal;
     return [c.start, c.end].map((j) => {
+      const other = meeting(c, j);
+      if (other) { // a closed corner (carom): mitred to the rail's corner
+        const [mx, my] = other.normal;
+        return [j[0] - CUSHION_WIDTH * (nx + mx), j[1] - CUSHION_WIDTH * (ny + my)];
+      }
       const pocket = pocketAtJaw(j);
       let [dx, dy] = pocket ? pocketOutward(pocket) : [-nx, -ny];
       const along = -(dx * nx + dy * ny); // how fast the cut goes back into the rail
@@ -246,8 +254,9 @@ function drawDiamonds(ctx, table, view) {
     ctx.fill();
   };
   ctx.fillStyle = '#efe6cf';
+  const carom = table.style === 'carom';
   for (let k = 1; k < 8; k++) {
-    if (k === 4) continue;
+    if (k === 4 && !carom) continue; // the side pocket's place
     diamond((L * k) / 8, -mid);
     diamond((L * k) / 8, W + mid);
   }
@@ -255,6 +264,39 @@ function drawDiamonds(ctx, table, view) {
     diamond(-mid, (W * k) / 4);
     diamond(L + mid, (W * k) / 4);
   }
+  if (carom) drawDiamondNumbers(ctx, table, view);
+}
+
+/**
+ * A carom table's aid to system aiming: each sight's number on the rail's outer edge, 0 to
+ * 8 along the long rails from the head corner, 0 to 4 along the short rails from the bottom.
+ * @param {Ctx} ctx
+ * @param {Table} table
+ * @param {View} view
+ */
+function drawDiamondNumbers(ctx, table, view) {
+  const L = table.length;
+  const W = table.width;
+  const out = CUSHION_WIDTH + RAIL_WIDTH * 0.85;
+  ctx.save();
+  ctx.fillStyle = 'rgba(239,230,207,0.85)';
+  ctx.font = `${Math.max(8, Math.round(view.scale * 0.03))}px system-ui, sans-serif`;
+  ctx.textAlign = 'center';
+  ctx.textBaseline = 'middle';
+  /** @type {(x: number, y: number, n: number) => void} */
+  const label = (x, y, n) => {
+    const [sx, sy] = view.toScreen(x, y);
+    ctx.fillText(String(n), sx, sy);
+  };
+  for (let k = 0; k <= 8; k++) {
+    label((L * k) / 8, -out, k);
+    label((L * k) / 8, W + out, k);
+  }
+  for (let k = 1; k < 4; k++) {
+    label(-out, (W * k) / 4, k);
+    label(L + out, (W * k) / 4, k);
+  }
+  ctx.restore();
 }
 
 /**

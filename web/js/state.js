@@ -330,6 +330,7 @@ export function pocketedBalls(state) {
   if (!state.match || !state.table) return [];
   const onTable = new Set(state.balls.map((b) => b.id));
   if (state.match.kind === 'snooker') return []; // the frame's scoreboard tells it
+  if (state.match.kind.startsWith('three_cushion')) return []; // no pockets
   const all = state.match.kind === 'nine_ball'
     ? [1, 2, 3, 4, 5, 6, 7, 8, 9]
     : [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15];

@@ -105,6 +105,8 @@ function setBalls(el, ids) {
 const GAME_NAMES = {
   eight_ball: '8-ball', nine_ball: '9-ball', practice: 'Practice', snooker: 'Snooker',
   snooker_practice: 'Snooker practice',
+  three_cushion_practice: 'Three-cushion practice',
+  three_cushion: 'Three-cushion',
 };
 
 /**
@@ -465,7 +467,7 @@ function lineupWords(drill) {
  */
 function renderWaysOn(state) {
   const ended = state.phase === 'over' || Boolean(state.room?.abandoned);
-  const ranked = ['nine_ball', 'snooker'];
+  const ranked = ['nine_ball', 'snooker', 'three_cushion'];
   const game = ranked.includes(state.room?.game ?? '') ? state.room?.game : 'eight_ball';
   const again = /** @type {HTMLAnchorElement} */ ($('new-opponent'));
   const href = `/?playnow=${game}`;

@@ -115,7 +115,7 @@ class Replay {
     }
     const { match } = this;
     this.stream = readStream(match.stream);
-    const game = { nine_ball: '9-ball', snooker: 'Snooker' }[/** @type {string} */ (match.game)]
+    const game = { nine_ball: '9-ball', snooker: 'Snooker', three_cushion: 'Three-cushion' }[/** @type {string} */ (match.game)]
       ?? '8-ball';
     setText($('replay-title'), `${(match.players ?? []).join(' vs ')} · ${game}`);
     const won = match.winner_name ? ` · ${match.winner_name} won` : '';

@@ -30,6 +30,7 @@ import { aimWords } from './words.js';
 import { SpinWidget } from './spin.js';
 import { elevationControl } from './elevation.js';
 import { renderFrame, nominationAt } from './snooker.js';
+import { CushionCounter, renderCarom, strikerBall } from './carom.js';
 
 const AIM_INTERVAL = 0.1; // seconds between two `aim` messages (the server asks <= 20/s)
 const REMOTE_AIM_TTL = 6; // seconds a relayed aim stays drawn without news
@@ -51,6 +52,8 @@ export class LiveTable {
   /** @param {string} roomId */
   constructor(roomId) {
     this.roomId = roomId;
+    this.cushions = new CushionCounter(); // three-cushion: the striker's cushions this shot
+    this.cushionsArmed = true;
     this.view = new TableView(/** @type {HTMLCanvasElement} */ ($('table')), $('table-wrap'),
       initialState({ roomId, name: memory.name() }));
     this.audio = this.view.audio;
@@ -266,8 +269,11 @@ export class LiveTable {
   /** @returns {Situation} */
   situation() {
     const { state, playback } = this;
-    const ballList = [...playback.balls].map(([id, b]) => ({ id, x: b.x, y: b.y }));
-    const cueBall = playback.balls.get(0);
+    // Carom: the striker's own ball is the cue ball (id 0 in what is aimed and guided).
+    const striker = strikerBall(state);
+    const asAimed = (/** @type {number} */ id) => (id === striker ? 0 : id === 0 ? striker : id);
+    const ballList = [...playback.balls].map(([id, b]) => ({ id: asAimed(id), x: b.x, y: b.y }));
+    const cueBall = playback.balls.get(striker);
     /** @type {[number, number] | null} */
     const cue = this.pendingCue ? [this.pendingCue.x, this.pendingCue.y]
       : cueBall ? [cueBall.x, cueBall.y] : null;
@@ -395,6 +401,20 @@ export class LiveTable {
     renderDecision(state, (option) => this.send({ type: 'decide', option,
       game: this.currentGame() }));
     renderFrame(state, (ball) => this.send({ type: 'nominate', ball }));
+    renderCarom(state, this.cushions);
+  }
+
+  /**
+   * Three-cushion: count the cushions the striker's ball meets while a shot rolls.
+   * @param {Situation} sit
+   */
+  countCushions(sit) {
+    const { state } = this;
+    if (!state.table || !/** @type {any} */ (state.match)?.carom) return;
+    if (state.phase !== 'rolling') { this.cushionsArmed = true; return; }
+    if (this.cushionsArmed) { this.cushions.reset(); this.cushionsArmed = false; }
+    const ball = sit.balls.find((b) => b.id === 0);
+    if (ball) this.cushions.update(state.table, ball.x, ball.y);
   }
 
   /** @param {number} now */
@@ -403,6 +423,7 @@ export class LiveTable {
     const frame = this.view.begin(state.table);
     if (!frame) return;
     const sit = this.situation();
+    this.countCushions(sit);
     const dragging = aim.mode === 'placing' && aim.placing ? aim.placing : null;
     if (sit.myTurn) drawHandArea(frame, state.table, sit.ballInHand, dragging);
     const remote = this.remoteDrag(sit, now);

@@ -13,6 +13,8 @@ import { bindNameField, profileName, settleName } from '../../identity.js';
 const GAME_NAMES = {
   eight_ball: '8-ball', nine_ball: '9-ball', practice: 'Practice', snooker: 'Snooker',
   snooker_practice: 'Snooker practice',
+  three_cushion_practice: 'Three-cushion practice',
+  three_cushion: 'Three-cushion',
 };
 
 /**
