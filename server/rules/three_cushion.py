@@ -14,9 +14,12 @@ What the server judges, plainly:
   nothing (UMB Art. 24), and each seat's innings are counted.
 - fouls (UMB Art. 41) the engine can tell: the opening stroke not on the red, and the shot
   clock. Striking the wrong cue ball cannot happen (the server strikes the striker's);
-  the engine is 2-D with no cue, so balls off the table (Art. 28), jumps, push strokes
-  and touching a ball cannot either. A foul scores nothing and ends the inning; the balls
-  stay where they stopped.
+  the engine has no cue to push or touch a ball with. A foul scores nothing and ends the
+  inning; the balls stay where they stopped.
+- a ball bounding off the table (UMB Art. 28, a raised cue's jump): a foul that ends the
+  inning; the balls are set up as at the opening with the next striker's ball on a
+  starting spot (as for balls in contact: the server does not judge the Article's spot
+  by spot placement).
 - balls in contact (UMB Art. 27): when the striker's cue ball comes to rest touching
   another ball, the balls are set up as at the opening, the striker's on a starting spot
   (the UMB lets the striker choose between that and playing away; the server sets up).
@@ -96,6 +99,8 @@ class ThreeCushionRules(GameRules):
         if score.opening and (not facts.cue_path or facts.cue_path[0] != RED):
             foul = Foul("opening", f"{name}'s opening stroke did not hit the red first.")
             return self._inning_over(pos, score, Ruling(fouls=[foul]), facts)
+        if facts.off_table or facts.cue_off_table:
+            return self._off_table(pos, score, facts)
         if not is_point(facts.cue_path, cue):
             ruling = Ruling(notes=[_miss_words(facts.cue_path, cue)])
             return self._inning_over(pos, score, ruling, facts)
@@ -119,6 +124,17 @@ class ThreeCushionRules(GameRules):
             _end_of_last_inning(pos, score, ruling)
         if ruling.winner is None and facts is not None:
             _set_up_if_frozen(pos, facts, score.cue_ball(other), ruling)
+        return ruling
+
+    def _off_table(self, pos: Position, score: CaromScore, facts: ShotFacts) -> Ruling:
+        """UMB Art. 28: a ball off the table is a foul; the balls are set up again."""
+        off = [*([score.cue_ball(pos.turn)] if facts.cue_off_table else []), *facts.off_table]
+        said = self.ball_names(off)
+        foul = Foul("ball_off_table", f"{pos.shooter} drove {said} off the table.")
+        ruling = self._inning_over(pos, score, Ruling(fouls=[foul]), None)
+        if ruling.winner is None:
+            ruling.spot = (score.cue_ball(pos.opponent),)
+            ruling.notes.append("The balls are set up as at the opening.")
         return ruling
 
     @override

@@ -8,7 +8,17 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from server.engine import BallSet, Event, FrameSequence, Shot, ShotResult, Table, simulate
+from server.engine import (
+    OFF_TABLE,
+    BallSet,
+    Event,
+    FrameSequence,
+    MotionState,
+    Shot,
+    ShotResult,
+    Table,
+    simulate,
+)
 from server.engine.rack import RED, WHITE, YELLOW
 from server.rules import Game, IllegalActionError
 from server.rules.carom_score import CaromScore, cushions_before_second, is_point
@@ -216,3 +226,22 @@ def test_practice_counts_points_and_innings_alone_and_never_ends():
     assert g.points == (2,) and g.carom.high_run == (2,) and not g.over
     g.rerack()
     assert g.points == (0,) and g.balls.position_of(RED) == CAROM.spots["foot"]
+
+
+def test_a_ball_off_the_table_is_a_foul_and_the_balls_are_set_up_again():
+    # UMB Art. 28 Balls bounding out of the billiard: a foul, no point even with the
+    # cannon made; the inning ends.
+    g = game()
+    result = crafted(g.balls, WHITE, RED, C, C, C, YELLOW)
+    row = result.final.index(RED)
+    result.final.states[row] = MotionState.POCKETED
+    result.final.pockets[row] = OFF_TABLE
+    result.events.append(Event(0.1, "off_table", (RED,), 3.0, 1))
+    out = g.apply(0, result)
+    assert [f.code for f in out.fouls] == ["ball_off_table"]
+    assert out.fouls[0].message == "Ana drove the red off the table."
+    assert g.points == (0, 0) and g.turn == 1 and g.cue_ball == YELLOW
+    assert g.balls.position_of(YELLOW) == CAROM.spots["break_right"]
+    assert g.balls.position_of(WHITE) == CAROM.spots["head"]
+    assert g.balls.position_of(RED) == CAROM.spots["foot"]
+    assert sorted(g.balls.on_table_ids()) == [WHITE, YELLOW, RED]
