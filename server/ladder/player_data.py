@@ -9,7 +9,7 @@ from __future__ import annotations
 import json
 from dataclasses import dataclass, replace
 
-from server.players import KindRating, Player, Rating, rate_match
+from server.players import KindRating, Player, Rating, rate_ranked
 from server.store import Database
 from server.store.analyses import AnalysisRows
 from server.store.drills import DrillRows, DrillTry
@@ -159,7 +159,7 @@ def rate_in_store(
 ) -> bool:
     """One transaction: both ratings as stored, rated by the result, written with the
     result; False (nothing written) when this room's result was stored already. Without a
-    `winner` the room is closed unrated."""
+    `winner` the room is closed unrated. Rated by `rate_ranked` (the farm rule)."""
     with rows.repo.transaction():
         found = rows.ranked(room.room_id)
         if found is None or found.finished_at is not None:
@@ -177,7 +177,7 @@ def rate_in_store(
             rows.finish_ranked(unrated)
             return True
         a, b = (_stored_rating(rows, p, room.kind) for p in room.players)
-        new_a, new_b = rate_match(a, b, winner == 0, at)
+        new_a, new_b = rate_ranked(a, b, winner == 0, at)
         rated = replace(
             unrated,
             winner=winner,
