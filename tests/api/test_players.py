@@ -29,6 +29,7 @@ from tests.support.messages import receive_until, state_where
 from tests.support.rooms import app_with, connect, create_room
 
 COOKIE = "pool_player"
+DEVICE_COOKIE = "pool_device"
 
 
 class Visitor:
@@ -432,6 +433,37 @@ def test_play_now_never_pairs_two_players_from_one_address(settings, clock):
         assert opponent in (ana.profile["name"], ben.profile["name"])
         other = ben if opponent == ana.profile["name"] else ana
         assert other.call("GET", "/api/playnow").json()["status"] == "waiting"
+
+
+def test_play_now_never_pairs_two_profiles_of_one_browser(clocked_client, clock):
+    """A browser keeps its `pool_device` cookie when it gets a new profile (the profile
+    cookie lost, a guest pruned): two profiles of one device are never paired, even where
+    one address may pair (this client's settings)."""
+    first = clocked_client.get("/api/players/me")
+    device = first.cookies[DEVICE_COOKIE]
+    clocked_client.cookies.clear()
+    again = clocked_client.get("/api/players/me", headers={"Cookie": f"{DEVICE_COOKIE}={device}"})
+    assert DEVICE_COOKIE not in again.cookies  # the device is kept
+    clocked_client.cookies.clear()
+    profiles = [first.cookies[COOKIE], again.cookies[COOKIE]]
+    assert profiles[0] != profiles[1]
+
+    def press(secret: str, device_cookie: str) -> dict:
+        cookies = f"{COOKIE}={secret}; {DEVICE_COOKIE}={device_cookie}"
+        response = clocked_client.post(
+            "/api/playnow", json={"game": "eight_ball"}, headers={"Cookie": cookies}
+        )
+        return dict(response.json())
+
+    assert press(profiles[0], device)["status"] == "waiting"
+    assert press(profiles[1], device)["status"] == "waiting"  # one device: not paired
+    clock.advance(15.0)
+    assert wave(clocked_client) == 0
+    other = clocked_client.get("/api/players/me")
+    stranger = (other.cookies[COOKIE], other.cookies[DEVICE_COOKIE])
+    clocked_client.cookies.clear()
+    assert stranger[1] != device
+    assert press(*stranger)["status"] == "matched"
 
 
 def test_the_leaderboard_orders_by_rating_minus_two_deviations(clocked_client, clock):
