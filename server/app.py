@@ -32,6 +32,7 @@ from server.cluster import Cluster
 from server.config import Settings
 from server.ladder import (
     ClusterMatchmaker,
+    GuestPruning,
     Matchmaker,
     PlayerData,
     PlayNow,
@@ -79,7 +80,10 @@ def create_app(
     )
     matchmaker = pick_matchmaker(registry, results, cluster)
     analyses = AnalysisQueue(store, settings)
-    lifespan = _Lifespan(registry, store, observer, cluster, matchmaker, analyses)
+    guests = GuestPruning(
+        players, matchmaker, clock, settings.guest_ttl, settings.guest_prune_every
+    )
+    lifespan = _Lifespan(registry, store, observer, cluster, matchmaker, analyses, guests)
     app = FastAPI(
         title="Pool online",
         version="1.0",
@@ -99,6 +103,7 @@ def create_app(
     app.state.players = players
     app.state.matchmaker = matchmaker
     app.state.analyses = analyses
+    app.state.guests = guests
     app.state.ranked_tables = RankedTables(results)
     app.state.accounts = Accounts(store, settings.session_idle)
     app.state.ceremonies = Ceremonies(store)
@@ -118,8 +123,8 @@ def create_app(
 @dataclass
 class _Lifespan:
     """What the app starts and stops around serving: the shot runner, the planners, the
-    store, the saved rooms (or the cluster's share of them), Play now, the analyses and
-    the sweepers."""
+    store, the saved rooms (or the cluster's share of them), Play now, the analyses, guest
+    pruning and the sweepers."""
 
     registry: RoomRegistry
     store: Database
@@ -127,6 +132,7 @@ class _Lifespan:
     cluster: Cluster | None
     matchmaker: PlayNow
     analyses: AnalysisQueue
+    guests: GuestPruning
 
     @contextlib.asynccontextmanager
     async def __call__(self, app: FastAPI) -> AsyncIterator[None]:  # noqa: ARG002 (FastAPI's signature)
@@ -135,6 +141,7 @@ class _Lifespan:
             asyncio.create_task(self.registry.run_sweeper()),
             asyncio.create_task(self.registry.run_watchdog()),
             asyncio.create_task(self.matchmaker.run()),
+            asyncio.create_task(self.guests.run()),
         ]
         try:
             yield

@@ -273,6 +273,10 @@ class Settings(BaseSettings):
     # rating farmed by fresh profiles of one address conceding to each other.
     playnow_same_address: bool = False
     player_create_rate: str = "20/minute"
+    # Guests (profiles made by a first visit) that never played (no seat, no rating) are
+    # deleted `guest_ttl` s after they were made, checked every `guest_prune_every` s.
+    guest_ttl: Annotated[float, Field(ge=60.0, le=400 * 86_400.0)] = 7 * 86_400.0
+    guest_prune_every: Annotated[float, Field(ge=1.0, le=86_400.0)] = 3_600.0
 
     # Accounts (docs/protocol.md, "Accounts"): a session ends after this long unused;
     # sign-in attempts per address and per account name, in moving windows.

@@ -82,6 +82,13 @@ class PlayerData:
         found = await self.db.call(lambda repo: PlayerRows(repo).player(player_id))
         return None if found is None else _player(found)
 
+    async def prune_guests(self, created_before: float, keep: set[str], limit: int) -> int:
+        """Delete up to `limit` guests made before `created_before` that never played
+        (`PlayerRows.prune_guests`); how many were."""
+        return await self.db.call(
+            lambda repo: PlayerRows(repo).prune_guests(created_before, keep, limit)
+        )
+
     async def rename(self, player_id: str, name: str) -> None:
         await self.db.call(lambda repo: PlayerRows(repo).rename_player(player_id, name))
 

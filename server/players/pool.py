@@ -71,6 +71,9 @@ class MatchPool:
     def __len__(self) -> int:
         return len(self._entries)
 
+    def waiting_ids(self) -> set[str]:
+        return set(self._entries)
+
     def get(self, player_id: str) -> Waiting | None:
         return self._entries.get(player_id)
 

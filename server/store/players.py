@@ -6,10 +6,11 @@ arithmetic is `server.players`' (the API layer runs it inside `transaction()`).
 from __future__ import annotations
 
 import json
+from collections.abc import Collection
 from dataclasses import dataclass
 from typing import Any
 
-from sqlalchemy import Connection, Row, func, literal, select, union_all
+from sqlalchemy import Connection, Row, delete, exists, func, literal, select, union_all
 from sqlalchemy.dialects import postgresql, sqlite
 
 from server.codec import encode
@@ -175,6 +176,26 @@ class PlayerRows:
                 .where(player_ratings.c.kind == kind, player_ratings.c.games > 0)
             ).all()
         return [(_rating(r), r.name) for r in rows]
+
+    def prune_guests(self, created_before: float, keep: Collection[str], limit: int) -> int:
+        """Delete up to `limit` guests made before `created_before` that never played: no
+        seat taken, no rating, no ranked room; never one of `keep` (waiting for Play now).
+        Their rows count the deleted. The one place that decides who is pruned: a profile
+        turned into an account adds its condition to `doomed` here."""
+        pid = players.c.id
+        doomed = (
+            select(pid)
+            .where(players.c.created_at < created_before)
+            .where(~exists().where(player_seats.c.player_id == pid))
+            .where(~exists().where(player_ratings.c.player_id == pid))
+            .where(~exists().where(ranked_rooms.c.player0 == pid))
+            .where(~exists().where(ranked_rooms.c.player1 == pid))
+        )
+        if keep:
+            doomed = doomed.where(pid.not_in(list(keep)))
+        with self.repo.transaction() as conn:
+            result = conn.execute(delete(players).where(pid.in_(doomed.limit(limit))))
+        return int(result.rowcount)
 
     # ---- seats ------------------------------------------------------------------------
 

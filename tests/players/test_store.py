@@ -160,3 +160,23 @@ def test_a_result_against_a_fresh_profile_moves_only_the_fresh_profile(db: Datab
     )
     assert (got_b.rating, got_b.games, got_b.wins) == (expect_b.rating.rating, 1, 0)
     assert got_b.rating < 1500
+
+
+def test_guests_that_never_played_are_pruned_once_old_enough(db: Database) -> None:
+    """Only a guest made before the cutoff with no seat, no rating, no ranked room and not
+    kept (waiting for Play now) is deleted; `limit` bounds one statement."""
+    players(db, "Old", "Seated", "Rated", "Ranked", "Queued", "Twin")
+    db.run(lambda repo: PlayerRows(repo).add_player("new", "New", "hash-New", NOW + 10))
+    db.run(lambda repo: PlayerRows(repo).add_player_seat("seated", "room-1", 0, NOW))
+    rated = RatingRecord("rated", "eight_ball", 1500.0, 350.0, 0.06, 1, 0, NOW)
+    db.run(lambda repo: PlayerRows(repo).save_rating(rated))
+    room = RankedRoom("room-2", "eight_ball", ("old", "ranked"), ("Old", "Ranked"))
+    db.run(lambda repo: PlayerRows(repo).add_ranked(ranked_record(room)))
+    cutoff = NOW + 5
+    prune = PlayerRows.prune_guests
+    assert db.run(lambda repo: prune(PlayerRows(repo), cutoff, {"queued"}, 1)) == 1  # twin
+    assert db.run(lambda repo: prune(PlayerRows(repo), cutoff, {"queued"}, 10)) == 0
+    left = {p for p in ("old", "seated", "rated", "ranked", "queued", "twin", "new")}
+    kept = {p for p in left if db.run(lambda repo, p=p: PlayerRows(repo).player(p)) is not None}
+    assert kept == {"old", "seated", "rated", "ranked", "queued", "new"}
+    assert db.run(lambda repo: prune(PlayerRows(repo), cutoff, set(), 10)) == 1  # queued
