@@ -10,14 +10,18 @@ Each turn: Ana (seat 0) plays a miss, the time from her shot's result to the com
 (`bench.crowd.Players`): each `shoot` to that player's `motion` is a sample of their p99.
 The flood: `--addresses` practice tables, each asking for "Show me a shot" again as soon
 as it has an answer; one per loopback address (127.0.0.x), or with `--one-address` all from
-one (the audit's attack: the per-address allowance of tables).
+one (the audit's attack: the per-address allowance of tables). The server runs as `python
+-m server` (its own defaults, but for a long shot clock and real-time pace), the flood in a
+process of its own at idle priority, so that neither slows the players' measurement down.
 """
 
 from __future__ import annotations
 
 import argparse
 import asyncio
+import json
 import statistics
+import sys
 import tempfile
 import time
 from pathlib import Path
@@ -26,11 +30,11 @@ import httpx
 import websockets
 
 from bench.crowd import Players
-from bench.load import percentile
-from server.config import Settings
-from tests.support.games import BREAK_MESSAGE
-from tests.support.live import live_server, recv, send, ws_url
-from tests.support.settings import settings_in
+from bench.load import percentile, start_server, wait_healthy
+from server.priority import run_when_idle
+from tests.support.games import BREAK_MESSAGE, EIGHT_BALL
+from tests.support.live import recv, send, ws_url
+from tests.support.ports import free_port
 
 
 async def computer_replies(address: str, turns: int) -> list[float]:
@@ -69,8 +73,7 @@ async def flood(address: str, source: str, stop: asyncio.Event, counts: dict[str
     async with httpx.AsyncClient(
         base_url=f"http://{address}", transport=transport, timeout=60
     ) as http:
-        room = (await http.post("/api/rooms", json={"game": "practice", "listed": False})).json()
-        seat = (await http.post(f"/api/rooms/{room['room_id']}/join", json={"name": "P"})).json()
+        room, seat = await practice_table(http)
         while not stop.is_set():
             try:
                 reply = await http.post(
@@ -81,13 +84,23 @@ async def flood(address: str, source: str, stop: asyncio.Event, counts: dict[str
                 continue
             code = "ok" if reply.status_code == 200 else reply.json()["detail"]["code"]
             counts[code] = counts.get(code, 0) + 1
+            if code == "unknown_room":  # closed (`POOL_PRACTICE_TTL` without its player)
+                room, seat = await practice_table(http)
             await asyncio.sleep(0.05)
+
+
+async def practice_table(http: httpx.AsyncClient) -> tuple[dict, dict]:
+    """A private practice table and its seat."""
+    room = (await http.post("/api/rooms", json={"game": "practice", "listed": False})).json()
+    seat = (await http.post(f"/api/rooms/{room['room_id']}/join", json={"name": "P"})).json()
+    return room, seat
 
 
 async def players_room(address: str, players: Players, stop: asyncio.Event) -> list:
     """Two people playing in a room of their own (their tasks; stopped by `stop`)."""
     async with httpx.AsyncClient(base_url=f"http://{address}", timeout=60) as http:
-        room = (await http.post("/api/rooms", json={"game": "eight_ball"})).json()["room_id"]
+        made = await http.post("/api/rooms", json={"game": "eight_ball", "race_to": 15})
+        room = made.json()["room_id"]
         tokens = [
             (await http.post(f"/api/rooms/{room}/join", json={"name": n})).json()["token"]
             for n in ("Ana", "Ben")
@@ -104,21 +117,17 @@ async def measure(address: str, turns: int, addresses: int, one_address: bool) -
     players.measuring = True
     quiet = await computer_replies(address, turns)
     quiet_starts, players.starts, players.measuring = players.starts, [], False
-    stop, counts = asyncio.Event(), {}  # type: ignore[var-annotated]
-    sources = (
-        ["127.0.0.10"] * addresses
-        if one_address
-        else [f"127.0.0.{10 + i}" for i in range(addresses)]
+    command = [sys.executable, "-m", "bench.hint_flood", "--flood-only", address]
+    command += ["--addresses", str(addresses)] + (["--one-address"] if one_address else [])
+    flooder = await asyncio.create_subprocess_exec(
+        *command, stdin=asyncio.subprocess.PIPE, stdout=asyncio.subprocess.PIPE
     )
-    tasks = [asyncio.create_task(flood(address, s, stop, counts)) for s in sources]
     await asyncio.sleep(3.0)
     players.measuring = True
     flooded = await computer_replies(address, turns)
-    stop.set()
     stop_players.set()
-    for task in tasks:  # a hint may be held for minutes: not waited for
-        task.cancel()
-    await asyncio.gather(*tasks, *playing, return_exceptions=True)
+    out, _ = await flooder.communicate(b"")  # stdin closed: the flood stops and counts
+    await asyncio.gather(*playing, return_exceptions=True)
     where = "one address" if one_address else f"{addresses} addresses"
     for name, samples, starts in (
         ("quiet", quiet, quiet_starts),
@@ -129,7 +138,25 @@ async def measure(address: str, turns: int, addresses: int, one_address: bool) -
             f" max {max(samples):.2f} s over {len(samples)} turns; players' shoot->motion"
             f" p99 {1000 * percentile(starts, 99):.0f} ms over {len(starts)}"
         )
-    print(f"hint answers during the flood: {dict(sorted(counts.items()))}")
+    print(f"hint answers during the flood: {out.decode().strip().splitlines()[-1]}")
+    print(f"players' shots played {players.played}, sockets closed {players.closed}")
+
+
+async def flood_only(address: str, addresses: int, one_address: bool) -> dict[str, int]:
+    """The flood until this process's stdin closes; the answers it got, by code."""
+    stop, counts = asyncio.Event(), {}  # type: ignore[var-annotated]
+    sources = (
+        ["127.0.0.10"] * addresses
+        if one_address
+        else [f"127.0.0.{10 + i}" for i in range(addresses)]
+    )
+    tasks = [asyncio.create_task(flood(address, s, stop, counts)) for s in sources]
+    await asyncio.get_running_loop().run_in_executor(None, sys.stdin.read)
+    stop.set()
+    for task in tasks:  # a hint may be held for minutes: not waited for
+        task.cancel()
+    await asyncio.gather(*tasks, return_exceptions=True)
+    return dict(sorted(counts.items()))
 
 
 def main() -> None:
@@ -138,16 +165,35 @@ def main() -> None:
     parser.add_argument("--addresses", type=int, default=20)
     parser.add_argument("--one-address", action="store_true")
     parser.add_argument("--workers", type=int, default=1)
+    parser.add_argument("--flood-only", help=argparse.SUPPRESS)  # the flood's own process
     args = parser.parse_args()
-    settings = settings_in(
-        Path(tempfile.mkdtemp()),
-        pace=1.0,
-        computer_workers=args.workers,
-        shot_clock=600.0,
-        hint_budget=Settings().hint_budget,  # the server's own, not the tests' unlimited one
-    )
-    with live_server(settings) as address:
-        asyncio.run(measure(address, args.turns, args.addresses, args.one_address))
+    if args.flood_only:
+        run_when_idle()  # a real flood's clients are on other machines
+        counts = asyncio.run(flood_only(args.flood_only, args.addresses, args.one_address))
+        print(json.dumps(counts))
+        return
+    asyncio.run(run(args.turns, args.addresses, args.one_address, args.workers))
+
+
+async def run(turns: int, addresses: int, one_address: bool, workers: int) -> None:
+    with tempfile.TemporaryDirectory() as scratch:
+        port = free_port()
+        extra = {
+            "POOL_PACE": "1.0",
+            "POOL_COMPUTER_WORKERS": str(workers),
+            "POOL_SHOT_CLOCK": "600",
+            "POOL_RACK_SEED": str(EIGHT_BALL),  # `BREAK_MESSAGE` is a legal break of it
+        }
+        proc = start_server(
+            port, Path(scratch) / "pool.db", Path(scratch) / "server.log", False, extra
+        )
+        address = f"127.0.0.1:{port}"
+        try:
+            await wait_healthy(f"http://{address}", proc)
+            await measure(address, turns, addresses, one_address)
+        finally:
+            proc.terminate()
+            proc.wait(30)
 
 
 if __name__ == "__main__":
