@@ -8,9 +8,10 @@ server's own hint limits: `POOL_HINT_QUEUE`, `POOL_HINT_WAIT`, `POOL_HINT_BUDGET
 Each turn: Ana (seat 0) plays a miss, the time from her shot's result to the computer's
 `shot_result` is one sample. Meanwhile two players play hard shots in a room of their own
 (`bench.crowd.Players`): each `shoot` to that player's `motion` is a sample of their p99.
-The flood: `--addresses` practice tables, each asking for "Show me a shot" again as soon
-as it has an answer; one per loopback address (127.0.0.x), or with `--one-address` all from
-one (the audit's attack: the per-address allowance of tables). The server runs as `python
+The flood: `--addresses` practice tables, each broken, then asking for "Show me a shot"
+again as soon as it has an answer; one per loopback address (127.0.0.x), or with
+`--one-address` all from one (the audit's attack: the per-address allowance of tables),
+and its player's socket kept open. The server runs as `python
 -m server` (its own defaults, but for a long shot clock and real-time pace), the flood in a
 process of its own at idle priority, so that neither slows the players' measurement down.
 """
@@ -69,24 +70,43 @@ async def computer_replies(address: str, turns: int) -> list[float]:
 
 
 async def flood(address: str, source: str, stop: asyncio.Event, counts: dict[str, int]) -> None:
+    """One flooding table: opened from `source`, broken (so that each hint plans a real
+    position, up to seconds, not a break), then asked for hints until the flood stops."""
     transport = httpx.AsyncHTTPTransport(local_address=source)
     async with httpx.AsyncClient(
         base_url=f"http://{address}", transport=transport, timeout=60
     ) as http:
-        room, seat = await practice_table(http)
         while not stop.is_set():
-            try:
-                reply = await http.post(
-                    f"/api/rooms/{room['room_id']}/hint", json={"token": seat["token"]}
-                )
-            except httpx.TimeoutException:  # gave up after 60 s, as a browser might
-                counts["no answer in 60 s"] = counts.get("no answer in 60 s", 0) + 1
-                continue
-            code = "ok" if reply.status_code == 200 else reply.json()["detail"]["code"]
-            counts[code] = counts.get(code, 0) + 1
-            if code == "unknown_room":  # closed (`POOL_PRACTICE_TTL` without its player)
-                room, seat = await practice_table(http)
-            await asyncio.sleep(0.05)
+            room, seat = await practice_table(http)
+            url = ws_url(address, room["room_id"], seat["token"])
+            async with websockets.connect(url) as ws:  # the player stays at the table
+                await break_rack(ws)
+                await ask_hints(http, room["room_id"], seat["token"], stop, counts)
+
+
+async def break_rack(ws: websockets.ClientConnection) -> None:
+    while (await recv(ws))["type"] != "presence":
+        pass
+    await send(ws, BREAK_MESSAGE)
+    while (await recv(ws, timeout=60))["type"] != "shot_result":
+        pass
+
+
+async def ask_hints(
+    http: httpx.AsyncClient, room_id: str, token: str, stop: asyncio.Event, counts: dict
+) -> None:
+    """Ask again as soon as answered, until the flood stops or the table is gone."""
+    while not stop.is_set():
+        try:
+            reply = await http.post(f"/api/rooms/{room_id}/hint", json={"token": token})
+        except httpx.TimeoutException:  # gave up after 60 s, as a browser might
+            counts["no answer in 60 s"] = counts.get("no answer in 60 s", 0) + 1
+            continue
+        code = "ok" if reply.status_code == 200 else reply.json()["detail"]["code"]
+        counts[code] = counts.get(code, 0) + 1
+        if code == "unknown_room":
+            return
+        await asyncio.sleep(0.05)
 
 
 async def practice_table(http: httpx.AsyncClient) -> tuple[dict, dict]:
