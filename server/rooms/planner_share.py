@@ -61,7 +61,12 @@ class PlanningBudget:
         return sum(seconds for _, seconds in done)
 
     def charge(self, key: Hashable, seconds: float) -> None:
-        self.plans.setdefault(key, deque()).append((self.clock(), seconds))
+        """Count a plan of `key` that just ended; forget requesters with none in the window
+        (one plan ends at a time, so this sweep stays small)."""
+        now = self.clock()
+        for old in [k for k, done in self.plans.items() if done[-1][0] <= now - self.window]:
+            del self.plans[old]
+        self.plans.setdefault(key, deque()).append((now, seconds))
 
 
 @dataclass

@@ -9,7 +9,7 @@ from collections.abc import Awaitable, Callable
 import pytest
 
 from server.rooms import ActionError
-from server.rooms.planner_share import PlannerShare, planner_share
+from server.rooms.planner_share import PlannerShare, PlanningBudget, planner_share
 
 pytestmark = pytest.mark.timeout(30)
 
@@ -250,3 +250,12 @@ def test_an_address_that_spent_its_planning_budget_is_refused_until_the_minute_p
     assert answers == ["planned"] * 3 + ["planning_budget", "planned", "planned"]
     # At 76 s the plans that ended at 24 s and 76 s are within the minute.
     assert share.budget.spent(("address", "10.0.0.1")) == 16.0
+
+
+def test_a_budget_forgets_requesters_without_a_plan_in_the_minute():
+    clock = Clock()
+    budget = PlanningBudget(clock=clock)
+    budget.charge("a", 3.0)
+    clock.now = 61.0
+    budget.charge("b", 1.0)
+    assert set(budget.plans) == {"b"} and budget.spent("a") == 0.0
