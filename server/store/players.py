@@ -18,6 +18,7 @@ from server.codec import encode
 from .repository import Repository
 from .schema import (
     matches,
+    metadata,
     player_ratings,
     player_seats,
     players,
@@ -178,19 +179,20 @@ class PlayerRows:
         return [(_rating(r), r.name) for r in rows]
 
     def prune_guests(self, created_before: float, keep: Collection[str], limit: int) -> int:
-        """Delete up to `limit` guests made before `created_before` that never played: no
-        seat taken, no rating, no ranked room; never one of `keep` (waiting for Play now).
-        Their rows count the deleted. The one place that decides who is pruned: a profile
-        turned into an account adds its condition to `doomed` here."""
+        """Delete up to `limit` guests made before `created_before` that never played: not
+        an account, and no row anywhere refers to them (no seat taken, no rating, no ranked
+        room, no session: every table with a key to `players`); never one of `keep`
+        (waiting for Play now). How many were deleted. The one place that decides who is
+        pruned."""
         pid = players.c.id
-        doomed = (
-            select(pid)
-            .where(players.c.created_at < created_before)
-            .where(~exists().where(player_seats.c.player_id == pid))
-            .where(~exists().where(player_ratings.c.player_id == pid))
-            .where(~exists().where(ranked_rooms.c.player0 == pid))
-            .where(~exists().where(ranked_rooms.c.player1 == pid))
+        doomed = select(pid).where(
+            players.c.created_at < created_before,
+            players.c.name_key.is_(None),  # an account is never pruned
         )
+        for table in metadata.sorted_tables:
+            for key in table.foreign_keys:
+                if key.column is pid:
+                    doomed = doomed.where(~exists().where(key.parent == pid))
         if keep:
             doomed = doomed.where(pid.not_in(list(keep)))
         with self.repo.transaction() as conn:

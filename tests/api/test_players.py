@@ -573,6 +573,7 @@ def test_a_ranked_room_brought_back_after_a_restart_is_still_rated(settings, clo
                 assert over["match"]["match_winner"] == 1
         mine = ana.call("GET", "/api/players/me").json()
         theirs = ben.call("GET", "/api/players/me").json()
-    assert [r["games"] for r in mine["ratings"]] == [COUNTED_GAMES + 1, 0, 0]  # 8-ball, 9-ball, snooker
+    games = [COUNTED_GAMES + 1, 0, 0]  # 8-ball, 9-ball, snooker
+    assert [r["games"] for r in mine["ratings"]] == games
     assert mine["ratings"][0]["rating"] < 1500 < theirs["ratings"][0]["rating"]
     assert theirs["recent"][0]["won"] and not mine["recent"][0]["won"]

@@ -7,10 +7,11 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from sqlalchemy import update
 
 from server.ladder import RankedRoom, rate_in_store
 from server.players import COUNTED_GAMES, KindRating, Rating, rate_match
-from server.store import Database, Repository
+from server.store import Database, Repository, schema
 from server.store.players import PlayerRows, RankedRecord, RatingRecord
 from tests.support.postgres import PostgresServer, postgres  # noqa: F401  (the fixture)
 
@@ -165,7 +166,17 @@ def test_a_result_against_a_fresh_profile_moves_only_the_fresh_profile(db: Datab
 def test_guests_that_never_played_are_pruned_once_old_enough(db: Database) -> None:
     """Only a guest made before the cutoff with no seat, no rating, no ranked room and not
     kept (waiting for Play now) is deleted; `limit` bounds one statement."""
-    players(db, "Old", "Seated", "Rated", "Ranked", "Queued", "Twin")
+    players(db, "Old", "Seated", "Rated", "Ranked", "Queued", "Twin", "Account")
+
+    def make_account(repo: Repository) -> None:  # an account never plays to be kept
+        with repo.transaction() as conn:
+            conn.execute(
+                update(schema.players)
+                .where(schema.players.c.id == "account")
+                .values(name_key="account", account_at=NOW)
+            )
+
+    db.run(make_account)
     db.run(lambda repo: PlayerRows(repo).add_player("new", "New", "hash-New", NOW + 10))
     db.run(lambda repo: PlayerRows(repo).add_player_seat("seated", "room-1", 0, NOW))
     rated = RatingRecord("rated", "eight_ball", 1500.0, 350.0, 0.06, 1, 0, NOW)
@@ -176,7 +187,7 @@ def test_guests_that_never_played_are_pruned_once_old_enough(db: Database) -> No
     prune = PlayerRows.prune_guests
     assert db.run(lambda repo: prune(PlayerRows(repo), cutoff, {"queued"}, 1)) == 1  # twin
     assert db.run(lambda repo: prune(PlayerRows(repo), cutoff, {"queued"}, 10)) == 0
-    left = {p for p in ("old", "seated", "rated", "ranked", "queued", "twin", "new")}
+    left = {"old", "seated", "rated", "ranked", "queued", "twin", "account", "new"}
     kept = {p for p in left if db.run(lambda repo, p=p: PlayerRows(repo).player(p)) is not None}
-    assert kept == {"old", "seated", "rated", "ranked", "queued", "new"}
+    assert kept == {"old", "seated", "rated", "ranked", "queued", "account", "new"}
     assert db.run(lambda repo: prune(PlayerRows(repo), cutoff, set(), 10)) == 1  # queued
