@@ -117,7 +117,8 @@ class Players:
         if match.get("requires_call"):
             await ws.send(json.dumps({"type": "call", "pocket": 0}))
         self.shot_sent = time.perf_counter()
-        await ws.send(json.dumps({"type": "shoot", "angle": 0.7 * self.played + 0.2, "speed": 7.0}))
+        angle = (0.7 * self.played + 0.2) % 6.0  # within the protocol's `max_angle`
+        await ws.send(json.dumps({"type": "shoot", "angle": angle, "speed": 7.0}))
 
 
 def fan_address(i: int) -> tuple[str, int]:

@@ -33,6 +33,7 @@ from server.cluster import Cluster
 from server.config import Settings
 from server.ladder import (
     ClusterMatchmaker,
+    GuestPruning,
     Matchmaker,
     PlayerData,
     PlayNow,
@@ -80,7 +81,10 @@ def create_app(
     )
     matchmaker = pick_matchmaker(registry, results, cluster)
     analyses = AnalysisQueue(store, settings)
-    lifespan = _Lifespan(registry, store, observer, cluster, matchmaker, analyses)
+    guests = GuestPruning(
+        players, matchmaker, clock, settings.guest_ttl, settings.guest_prune_every
+    )
+    lifespan = _Lifespan(registry, store, observer, cluster, matchmaker, analyses, guests)
     app = FastAPI(
         title="Pool online",
         version="1.0",
@@ -100,6 +104,7 @@ def create_app(
     app.state.players = players
     app.state.matchmaker = matchmaker
     app.state.analyses = analyses
+    app.state.guests = guests
     app.state.ranked_tables = RankedTables(results)
     app.state.accounts = Accounts(store, settings.session_idle)
     app.state.ceremonies = Ceremonies(store)
@@ -120,8 +125,8 @@ def create_app(
 @dataclass
 class _Lifespan:
     """What the app starts and stops around serving: the shot runner, the planners, the
-    store, the saved rooms (or the cluster's share of them), Play now, the analyses and
-    the sweepers."""
+    store, the saved rooms (or the cluster's share of them), Play now, the analyses, guest
+    pruning and the sweepers."""
 
     registry: RoomRegistry
     store: Database
@@ -129,6 +134,7 @@ class _Lifespan:
     cluster: Cluster | None
     matchmaker: PlayNow
     analyses: AnalysisQueue
+    guests: GuestPruning
 
     @contextlib.asynccontextmanager
     async def __call__(self, app: FastAPI) -> AsyncIterator[None]:  # noqa: ARG002 (FastAPI's signature)
@@ -137,6 +143,7 @@ class _Lifespan:
             asyncio.create_task(self.registry.run_sweeper()),
             asyncio.create_task(self.registry.run_watchdog()),
             asyncio.create_task(self.matchmaker.run()),
+            asyncio.create_task(self.guests.run()),
         ]
         try:
             yield

@@ -145,9 +145,11 @@ class Settings(BaseSettings):
     computer_starved: Annotated[float, Field(ge=0.5, le=600.0)] = 10.0
     # Practice hints share the planners behind the computer's turns (server/rooms/
     # planner_share.py): at most `hint_queue` wait (more: 429 hints_busy), each at most
-    # `hint_wait` s (then 503 hint_timeout), one per table, address and player.
+    # `hint_wait` s (then 503 hint_timeout), one per table, address and player; an
+    # address may use `hint_budget` s of planning in any minute (then 429 planning_budget).
     hint_queue: Annotated[int, Field(ge=0, le=1000)] = 8
     hint_wait: Annotated[float, Field(gt=0.0, le=120.0)] = 15.0
+    hint_budget: Annotated[float, Field(gt=0.0, le=3600.0)] = 20.0
     # Match analyses (docs/ai.md, "Analysis"): asked for by the first GET of a finished
     # match's analysis, run in `analysis_workers` processes at the idle class (0: a
     # thread), at most `analysis_at_once` here at a time, each shot only while no computer
@@ -273,6 +275,10 @@ class Settings(BaseSettings):
     # rating farmed by fresh profiles of one address conceding to each other.
     playnow_same_address: bool = False
     player_create_rate: str = "20/minute"
+    # Guests (profiles made by a first visit) that never played (no seat, no rating) are
+    # deleted `guest_ttl` s after they were made, checked every `guest_prune_every` s.
+    guest_ttl: Annotated[float, Field(ge=60.0, le=400 * 86_400.0)] = 7 * 86_400.0
+    guest_prune_every: Annotated[float, Field(ge=1.0, le=86_400.0)] = 3_600.0
 
     # Accounts (docs/protocol.md, "Accounts"): a session ends after this long unused;
     # sign-in attempts per address and per account name, in moving windows.

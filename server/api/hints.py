@@ -25,6 +25,7 @@ _STATUS = {
     "not_your_turn": 409,
     "hint_pending": 429,  # the table, the address or the player has a hint asked already
     "hints_busy": 429,  # the queue of hints waiting for the planners is full
+    "planning_budget": 429,  # the address used its planning seconds of the minute
     "hint_timeout": 503,  # the planners stayed busy with the computer's turns
 }
 
@@ -52,14 +53,18 @@ class Hint(BaseModel):
 
 
 def hint_ask(settings: Settings, address: str | None, player: str | None) -> HintAsk:
-    """Who asks (`requester` keys: the address, and the player when there is a profile)
-    and the queue's bounds from the settings."""
+    """Who asks (`requester` keys: the address, and the player when there is a profile),
+    the queue's bounds and the address's planning budget from the settings."""
     requester: list[tuple[str, str]] = []
+    budgeted: tuple[tuple[str, str], ...] = ()
     if address is not None:
         requester.append(("address", address))
+        budgeted = (("address", address),)
     if player is not None:
         requester.append(("player", player))
-    return HintAsk(tuple(requester), settings.hint_queue, settings.hint_wait)
+    return HintAsk(
+        tuple(requester), settings.hint_queue, settings.hint_wait, budgeted, settings.hint_budget
+    )
 
 
 async def hint_for(

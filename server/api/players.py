@@ -40,7 +40,7 @@ from .deps import (
     Secret,
     SettingsDep,
 )
-from .identity import COOKIE, SESSION_COOKIE
+from .identity import COOKIE, DEVICE_COOKIE, SESSION_COOKIE, device_id
 from .player_schemas import Leaderboard, PlayNow, PlayNowStatus, Profile, Rename
 from .schemas import ErrorResponse
 
@@ -71,9 +71,11 @@ async def known_player(secret: Secret, data: Players) -> Player:
 Me = Annotated[Player, Depends(known_player)]
 
 
-def _set_cookie(response: Response, request: Request, secret: str, secure: bool) -> None:
+def _set_cookie(
+    response: Response, request: Request, secret: str, secure: bool, name: str = COOKIE
+) -> None:
     response.set_cookie(
-        COOKIE,
+        name,
         secret,
         max_age=COOKIE_AGE,
         path="/",
@@ -184,8 +186,9 @@ async def my_profile(
     secret: Secret,
 ) -> dict[str, Any]:
     """The asking player's profile. On a first visit (no valid cookie) a player is made and
-    its secret set in the `pool_player` cookie (HttpOnly, SameSite=Lax). 429: this address
-    made too many profiles within the rate window."""
+    its secret set in the `pool_player` cookie (HttpOnly, SameSite=Lax), and a browser
+    without a `pool_device` cookie is given one then (kept across its profiles, for Play
+    now). 429: this address made too many profiles within the rate window."""
     now = registry.clock.wall()
     player = None if secret is None else await data.by_secret(secret_hash(secret))
     if player is None:
@@ -194,8 +197,10 @@ async def my_profile(
         player = Player(player_id, default_name(player_id), now)
         secret = new_secret()
         await data.add(player, secret_hash(secret))
-        public = settings.public_url or ""
-        _set_cookie(response, request, secret, public.startswith("https:"))
+        secure = (settings.public_url or "").startswith("https:")
+        _set_cookie(response, request, secret, secure)
+        if device_id(request) is None:  # a browser keeps its device across its profiles
+            _set_cookie(response, request, new_secret(), secure, DEVICE_COOKIE)
         if SESSION_COOKIE in request.cookies:  # a session ended (signed out elsewhere, idle)
             response.delete_cookie(SESSION_COOKIE, path="/", httponly=True, samesite="lax")
     return await _profile(data, player, now, me=True)
@@ -278,6 +283,7 @@ def remember_seat(
 
 @router.post("/api/playnow", response_model=PlayNowStatus, responses=_ERRORS)
 async def play_now(
+    request: Request,
     body: PlayNow,
     me: Me,
     secret: Secret,
@@ -291,7 +297,7 @@ async def play_now(
     """Queue for a ranked game of `game` at the player's rating; paired at once when
     someone suitable waits (`matched`), else `waiting`: long-poll `GET /api/playnow`.
     Pressing again keeps the player's one place. Never paired with a player asking from
-    the same address. 429: too many joins and leaves."""
+    the same address or the same browser (`pool_device`). 429: too many joins and leaves."""
     quotas.enforce("queue", me.id)
     assert secret is not None  # `me` was found by it
     rating = (await data.ratings(me.id, (body.game,)))[body.game]
@@ -304,6 +310,7 @@ async def play_now(
         matches.now(),
         seat_key(secret),
         address=None if settings.playnow_same_address else client,
+        device=device_id(request),
     )
     try:
         await matches.enqueue(entry)

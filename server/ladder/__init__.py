@@ -8,6 +8,7 @@ process) and `ClusterMatchmaker` (in Redis, cluster mode); the app picks one.
 
 from .cluster_matchmaker import ClusterMatchmaker
 from .friends import RankedTables
+from .guests import GuestPruning
 from .matchmaker import Matchmaker
 from .player_data import PlayerData, RankedRoom, rate_in_store
 from .playnow import Assignment, PlayNow, matched
@@ -17,6 +18,7 @@ from .watch import RankedWatch
 __all__ = [
     "Assignment",
     "ClusterMatchmaker",
+    "GuestPruning",
     "Matchmaker",
     "PlayNow",
     "PlayerData",

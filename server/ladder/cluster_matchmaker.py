@@ -212,6 +212,12 @@ class ClusterMatchmaker(PlayNow):
         await self.redis.hdel(PAIRING, first, second)
         return True
 
+    async def queued(self) -> set[str]:
+        waiting = await self.redis.hkeys(ENTRIES)
+        pairing = await self.redis.hkeys(PAIRING)
+        keys = {k if isinstance(k, str) else k.decode() for k in (*waiting, *pairing)}
+        return keys | await self.local.queued()
+
     async def resume(self) -> int:
         return await self.watch_new_rooms()
 

@@ -93,6 +93,9 @@ class Matchmaker(PlayNow):
             del self.assignments[player_id]
         return opened
 
+    async def queued(self) -> set[str]:
+        return self.pool.waiting_ids() | set(self.assignments)
+
     async def resume(self) -> int:
         """After the saved rooms are restored: watch the ranked ones again."""
         return self.results.restore(await self.data.open_ranked())

@@ -9,7 +9,7 @@ from __future__ import annotations
 import json
 from dataclasses import dataclass, replace
 
-from server.players import KindRating, Player, Rating, rate_match
+from server.players import KindRating, Player, Rating, rate_ranked
 from server.store import Database
 from server.store.analyses import AnalysisRows
 from server.store.drills import DrillRows, DrillTry
@@ -81,6 +81,13 @@ class PlayerData:
     async def get(self, player_id: str) -> Player | None:
         found = await self.db.call(lambda repo: PlayerRows(repo).player(player_id))
         return None if found is None else _player(found)
+
+    async def prune_guests(self, created_before: float, keep: set[str], limit: int) -> int:
+        """Delete up to `limit` guests made before `created_before` that never played
+        (`PlayerRows.prune_guests`); how many were."""
+        return await self.db.call(
+            lambda repo: PlayerRows(repo).prune_guests(created_before, keep, limit)
+        )
 
     async def rename(self, player_id: str, name: str) -> None:
         await self.db.call(lambda repo: PlayerRows(repo).rename_player(player_id, name))
@@ -159,7 +166,7 @@ def rate_in_store(
 ) -> bool:
     """One transaction: both ratings as stored, rated by the result, written with the
     result; False (nothing written) when this room's result was stored already. Without a
-    `winner` the room is closed unrated."""
+    `winner` the room is closed unrated. Rated by `rate_ranked` (the farm rule)."""
     with rows.repo.transaction():
         found = rows.ranked(room.room_id)
         if found is None or found.finished_at is not None:
@@ -177,7 +184,7 @@ def rate_in_store(
             rows.finish_ranked(unrated)
             return True
         a, b = (_stored_rating(rows, p, room.kind) for p in room.players)
-        new_a, new_b = rate_match(a, b, winner == 0, at)
+        new_a, new_b = rate_ranked(a, b, winner == 0, at)
         rated = replace(
             unrated,
             winner=winner,

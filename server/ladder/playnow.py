@@ -60,6 +60,11 @@ class PlayNow(ABC):
         (not rated); the seat and the level. `ActionError("not_offered")` before then."""
 
     @abstractmethod
+    async def queued(self) -> set[str]:
+        """The players waiting in the queue or just paired (kept from guest pruning: their
+        seats are about to be stored)."""
+
+    @abstractmethod
     async def resume(self) -> int:
         """After the saved rooms are restored: watch the ranked ones again (their count)."""
 

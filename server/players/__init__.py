@@ -19,18 +19,22 @@ from .profile import (
 )
 from .ratings import (
     COMPUTER_RATINGS,
+    COUNTED_GAMES,
     PROVISIONAL_RD,
     RANKED_KINDS,
     RATING_PERIOD,
     KindRating,
     Standing,
+    counts,
     nearest_level,
     rate_match,
+    rate_ranked,
     standings,
 )
 
 __all__ = [
     "COMPUTER_RATINGS",
+    "COUNTED_GAMES",
     "PROVISIONAL_RD",
     "RANKED_KINDS",
     "RATING_PERIOD",
@@ -45,6 +49,7 @@ __all__ = [
     "Waiting",
     "Window",
     "check_name",
+    "counts",
     "default_name",
     "expected_score",
     "idle",
@@ -53,6 +58,7 @@ __all__ = [
     "new_secret",
     "rate",
     "rate_match",
+    "rate_ranked",
     "seat_key",
     "seat_token",
     "secret_hash",

@@ -23,8 +23,9 @@ class QueueError(ValueError):
 class Waiting:
     """One queue entry. `seat_key` lets the server make the player's seat token in the
     room it pairs them into (see `profile.seat_key`). `address`: where the player asked
-    from; two entries from one address are never paired (fresh profiles conceding to one
-    another farmed a rating)."""
+    from; `device`: the browser's device id (its `pool_device` cookie, hashed). Two
+    entries of one address or one device are never paired (fresh profiles conceding to
+    one another farmed a rating)."""
 
     player_id: str
     name: str
@@ -33,6 +34,7 @@ class Waiting:
     since: float
     seat_key: str
     address: str | None = None
+    device: str | None = None
 
 
 @dataclass(frozen=True)
@@ -68,6 +70,9 @@ class MatchPool:
 
     def __len__(self) -> int:
         return len(self._entries)
+
+    def waiting_ids(self) -> set[str]:
+        return set(self._entries)
 
     def get(self, player_id: str) -> Waiting | None:
         return self._entries.get(player_id)
@@ -156,7 +161,7 @@ class MatchPool:
                 right += 1
             if abs(other.rating - entry.rating) > reach:
                 break  # sorted outward: nobody further can suit
-            if other.player_id == entry.player_id or _same_address(entry, other):
+            if other.player_id == entry.player_id or _same_client(entry, other):
                 continue
             if self._suits(entry, other, now):
                 best = other
@@ -169,5 +174,7 @@ class MatchPool:
         return Pairing(entry.kind, match, entry)  # the one who waited longer breaks
 
 
-def _same_address(a: Waiting, b: Waiting) -> bool:
-    return a.address is not None and a.address == b.address
+def _same_client(a: Waiting, b: Waiting) -> bool:
+    """One address or one device (unknown ones are never the same)."""
+    same_address = a.address is not None and a.address == b.address
+    return same_address or (a.device is not None and a.device == b.device)

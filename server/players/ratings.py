@@ -17,6 +17,10 @@ from .glicko2 import Rating, idle, rate
 RANKED_KINDS: tuple[str, ...] = ("eight_ball", "nine_ball", "snooker", "three_cushion")
 RATING_PERIOD = 86_400.0  # s: one day, the period of the deviation's growth
 PROVISIONAL_RD = 110.0  # a rating is provisional while its deviation is above this
+# The farm rule (docs/rules.md, "Ratings"): a ranked result moves a player's rating only
+# when the opponent had at least this many rated games in the kind before it (about the
+# games a new player needs before the deviation falls below `PROVISIONAL_RD`).
+COUNTED_GAMES = 10
 
 # The computer's levels on the same scale. Estimated from the ladder measured in docs/ai.md
 # (8-ball, the levels as they were when these were set: amateur beat beginner 81.7 % of 60 games,
@@ -75,6 +79,27 @@ def rate_match(
             rated_at=now,
         ),
     )
+
+
+def counts(opponent: KindRating) -> bool:
+    """Whether a result against `opponent` may move the other player's rating: only once
+    the opponent has `COUNTED_GAMES` rated games (fresh profiles are free to make)."""
+    return opponent.games >= COUNTED_GAMES
+
+
+def rate_ranked(
+    first: KindRating, second: KindRating, first_won: bool, now: float
+) -> tuple[KindRating, KindRating]:
+    """A ranked match as the ladder rates it: `rate_match` (Glicko-2 untouched), except that
+    a player whose opponent does not `count` yet keeps the rating (rating, deviation and
+    volatility as of `now`); the game and the win are counted either way. So a profile made
+    to lose moves nobody, and a newcomer moves only against players with a record."""
+    new_first, new_second = rate_match(first, second, first_won, now)
+    if not counts(second):
+        new_first = replace(new_first, rating=first.at(now))
+    if not counts(first):
+        new_second = replace(new_second, rating=second.at(now))
+    return new_first, new_second
 
 
 def nearest_level(rating: float) -> str:

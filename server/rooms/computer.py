@@ -325,6 +325,7 @@ class ComputerSeat:
 HINT_LEVEL = Bot.LEVELS[-1]  # "Show me a shot" shows what the strongest level would play
 HINT_QUEUE = 8  # hints that may wait for the planners (`POOL_HINT_QUEUE`)
 HINT_WAIT = 15.0  # s a hint may wait for them before it is refused (`POOL_HINT_WAIT`)
+HINT_BUDGET = 20.0  # s of planning an address may use in any minute (`POOL_HINT_BUDGET`)
 
 
 @dataclass(frozen=True)
@@ -335,6 +336,8 @@ class HintAsk:
     requester: tuple[Hashable, ...] = ()
     max_waiting: int = HINT_QUEUE
     max_wait: float = HINT_WAIT
+    budgeted: tuple[Hashable, ...] = ()  # requesters with a planning budget (the address)
+    budget: float = HINT_BUDGET
 
 
 async def hint(
@@ -354,7 +357,14 @@ async def hint(
 
     keys = (("room", room.room_id), *ask.requester)
     share = planner_share(workers)
-    return await share.hint(keys, plan, max_waiting=ask.max_waiting, max_wait=ask.max_wait)
+    return await share.hint(
+        keys,
+        plan,
+        max_waiting=ask.max_waiting,
+        max_wait=ask.max_wait,
+        budgeted=ask.budgeted,
+        budget=ask.budget,
+    )
 
 
 def _hint_seat(room: Room, token: str) -> int:

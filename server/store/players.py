@@ -6,10 +6,11 @@ arithmetic is `server.players`' (the API layer runs it inside `transaction()`).
 from __future__ import annotations
 
 import json
+from collections.abc import Collection
 from dataclasses import dataclass
 from typing import Any
 
-from sqlalchemy import Connection, Row, func, literal, select, union_all
+from sqlalchemy import Connection, Row, delete, exists, func, literal, select, union_all
 from sqlalchemy.dialects import postgresql, sqlite
 
 from server.codec import encode
@@ -17,6 +18,7 @@ from server.codec import encode
 from .repository import Repository
 from .schema import (
     matches,
+    metadata,
     player_ratings,
     player_seats,
     players,
@@ -175,6 +177,27 @@ class PlayerRows:
                 .where(player_ratings.c.kind == kind, player_ratings.c.games > 0)
             ).all()
         return [(_rating(r), r.name) for r in rows]
+
+    def prune_guests(self, created_before: float, keep: Collection[str], limit: int) -> int:
+        """Delete up to `limit` guests made before `created_before` that never played: not
+        an account, and no row anywhere refers to them (no seat taken, no rating, no ranked
+        room, no session: every table with a key to `players`); never one of `keep`
+        (waiting for Play now). How many were deleted. The one place that decides who is
+        pruned."""
+        pid = players.c.id
+        doomed = select(pid).where(
+            players.c.created_at < created_before,
+            players.c.name_key.is_(None),  # an account is never pruned
+        )
+        for table in metadata.sorted_tables:
+            for key in table.foreign_keys:
+                if key.column is pid:
+                    doomed = doomed.where(~exists().where(key.parent == pid))
+        if keep:
+            doomed = doomed.where(pid.not_in(list(keep)))
+        with self.repo.transaction() as conn:
+            result = conn.execute(delete(players).where(pid.in_(doomed.limit(limit))))
+        return int(result.rowcount)
 
     # ---- seats ------------------------------------------------------------------------
 

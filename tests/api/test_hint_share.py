@@ -218,3 +218,23 @@ def test_a_hint_whose_client_left_is_not_planned(address: str, planner: OnePlann
     answers = asyncio.run(scenario())
     assert answers == [(200, "ok"), (200, "ok")]
     assert planner.log.count(("run", "hint")) == 2  # the one whose client left never ran
+
+
+def test_an_address_that_spent_its_planning_budget_is_refused_with_429(
+    tmp_path: Path, planner: OnePlanner
+):
+    """`POOL_HINT_BUDGET` 0.5 s: two hints of 0.4 s spend it; the third from that address
+    is refused at once (`429 planning_budget`, nothing planned), another address is served."""
+    settings = settings_in(tmp_path, computer_workers=1, hint_budget=0.5)
+
+    async def scenario(where: str) -> list[tuple[int, str]]:
+        async with client_at(where, "127.0.0.6") as http, client_at(where, "127.0.0.7") as other:
+            table = await practice_table(http)
+            answers = [await ask_hint(http, table) for _ in range(3)]
+            answers.append(await ask_hint(other, await practice_table(other)))
+            return answers
+
+    with live_server(settings) as where:
+        answers = asyncio.run(scenario(where))
+    assert answers == [(200, "ok"), (200, "ok"), (429, "planning_budget"), (200, "ok")]
+    assert planner.log.count(("run", "hint")) == 3

@@ -15,7 +15,7 @@ import pytest
 from fastapi.testclient import TestClient
 from starlette.testclient import WebSocketTestSession
 
-from server.players import COMPUTER_RATINGS, KindRating, rate_match
+from server.players import COMPUTER_RATINGS, COUNTED_GAMES, KindRating, rate_match
 from server.store.players import PlayerRows, RatingRecord
 from tests.support.games import (
     BREAK_MESSAGE,
@@ -29,6 +29,7 @@ from tests.support.messages import receive_until, state_where
 from tests.support.rooms import app_with, connect, create_room
 
 COOKIE = "pool_player"
+DEVICE_COOKIE = "pool_device"
 
 
 class Visitor:
@@ -168,6 +169,15 @@ def test_matches_in_the_players_seats_go_on_the_profile(clocked_client):
     assert clocked_client.get(f"/api/matches/{played['match_id']}").json()["room_id"] == room_id
 
 
+def with_records(client: TestClient, now: float, *visitors: Visitor) -> None:
+    """Give each visitor a record of `COUNTED_GAMES` 8-ball games left at the starting
+    rating (1500, RD 350), so that results against them count (the farm rule) and Glicko-2
+    gives the numbers of two new players."""
+    for visitor in visitors:
+        record = RatingRecord(visitor.id, "eight_ball", 1500.0, 350.0, 0.06, COUNTED_GAMES, 0, now)
+        client.app.state.store.run(lambda repo, r=record: PlayerRows(repo).save_rating(r))
+
+
 def paired(ana: Visitor, ben: Visitor) -> tuple[dict, dict]:
     """Ana then Ben press Play now and are paired: each one's seat (`room_id`, `token`)."""
     play_now(ana)
@@ -289,6 +299,7 @@ def test_the_computer_offered_is_the_level_nearest_the_rating(clocked_client, cl
 
 def test_a_ranked_match_moves_both_ratings_by_glicko2(clocked_client, clock):
     ana, ben = Visitor(clocked_client), Visitor(clocked_client)
+    with_records(clocked_client, clock.now, ana, ben)
     a, b = paired(ana, ben)
     with at_the_table(clocked_client, a["room_id"], a, b) as (wa, wb):
         both_visit(wa, wb)
@@ -316,7 +327,8 @@ def test_a_ranked_match_moves_both_ratings_by_glicko2(clocked_client, clock):
     assert got_b["rating"] == pytest.approx(expect_b.rating.rating, abs=0.01)
     assert got_a["rating"] > 1500 > got_b["rating"]
     assert (round(got_a["rating"], 2), round(got_b["rating"], 2)) == (1662.31, 1337.69)
-    assert (got_a["games"], got_a["wins"], got_b["games"], got_b["wins"]) == (1, 1, 1, 0)
+    games = COUNTED_GAMES + 1
+    assert (got_a["games"], got_a["wins"], got_b["games"], got_b["wins"]) == (games, 1, games, 0)
     (recent,) = mine["recent"]
     assert recent["won"] and recent["opponent"] == ben.profile["name"]
     assert recent["rating_before"] == 1500 and recent["room_id"] == a["room_id"]
@@ -341,12 +353,8 @@ def test_a_ranked_match_ended_before_any_shot_is_not_rated(clocked_client):
         state_where(wb, lambda s: s["match"]["match_over"])
     for player in (ana, ben):
         profile = player.call("GET", "/api/players/me").json()
-        assert [r["games"] for r in profile["ratings"]] == [
-            0,
-            0,
-            0,
-            0,
-        ]  # 8-ball, 9-ball, snooker, three-cushion
+        # 8-ball, 9-ball, snooker, three-cushion
+        assert [r["games"] for r in profile["ratings"]] == [0, 0, 0, 0]
         assert profile["recent"] == []
     assert clocked_client.get("/api/leaderboard/eight_ball").json()["provisional"] == []
 
@@ -363,13 +371,48 @@ def test_a_concession_before_the_other_side_played_is_not_rated(clocked_client):
         assert over["match"]["match_winner"] == 0  # the game is won, not rated
     for player in (ana, ben):
         profile = player.call("GET", "/api/players/me").json()
-        assert [r["games"] for r in profile["ratings"]] == [
-            0,
-            0,
-            0,
-            0,
-        ]  # 8-ball, 9-ball, snooker, three-cushion
+        # 8-ball, 9-ball, snooker, three-cushion
+        assert [r["games"] for r in profile["ratings"]] == [0, 0, 0, 0]
         assert [r["rating"] for r in profile["ratings"]] == [1500, 1500, 1500, 1500]
+
+
+def farm_round(client: TestClient, farmer: Visitor, victim: Visitor) -> None:
+    """The audit's farm, one round: paired by Play now, each side strikes, the victim
+    concedes."""
+    a, b = paired(farmer, victim)
+    with at_the_table(client, a["room_id"], a, b) as (wa, wb):
+        both_visit(wa, wb)
+        wb.send_json({"type": "concede"})
+        state_where(wa, lambda s: s["match"]["match_over"] and s["match"]["match_winner"] == 0)
+
+
+def eight_ball_rating(visitor: Visitor) -> dict:
+    profile = visitor.call("GET", "/api/players/me").json()
+    return dict(next(r for r in profile["ratings"] if r["game"] == "eight_ball"))
+
+
+def test_wins_over_fresh_profiles_do_not_move_a_rating(clocked_client, clock):
+    """The farm rule through the API: three fresh profiles concede to a farmer after each
+    side struck: the games are counted, the rating stays 1500; a win over a player with a
+    record then moves it by Glicko-2."""
+    farmer = Visitor(clocked_client)
+    for _ in range(3):
+        farm_round(clocked_client, farmer, Visitor(clocked_client))
+    farmed = eight_ball_rating(farmer)
+    assert (farmed["rating"], farmed["rd"], farmed["games"], farmed["wins"]) == (1500, 350, 3, 3)
+    known = Visitor(clocked_client)
+    with_records(clocked_client, clock.now, known)
+    farm_round(clocked_client, farmer, known)
+    expect, _ = rate_match(
+        KindRating(farmer.id, "eight_ball", games=3, wins=3),
+        KindRating(known.id, "eight_ball", games=COUNTED_GAMES),
+        True,
+        clock.now,
+    )
+    won = eight_ball_rating(farmer)
+    assert won["rating"] == pytest.approx(expect.rating.rating, abs=0.01)
+    assert (won["games"], won["wins"]) == (4, 4) and won["rating"] > 1600
+    assert eight_ball_rating(known)["rating"] == 1500  # the farmer had 3 games: no record yet
 
 
 def test_play_now_never_pairs_two_players_from_one_address(settings, clock):
@@ -392,6 +435,37 @@ def test_play_now_never_pairs_two_players_from_one_address(settings, clock):
         assert opponent in (ana.profile["name"], ben.profile["name"])
         other = ben if opponent == ana.profile["name"] else ana
         assert other.call("GET", "/api/playnow").json()["status"] == "waiting"
+
+
+def test_play_now_never_pairs_two_profiles_of_one_browser(clocked_client, clock):
+    """A browser keeps its `pool_device` cookie when it gets a new profile (the profile
+    cookie lost, a guest pruned): two profiles of one device are never paired, even where
+    one address may pair (this client's settings)."""
+    first = clocked_client.get("/api/players/me")
+    device = first.cookies[DEVICE_COOKIE]
+    clocked_client.cookies.clear()
+    again = clocked_client.get("/api/players/me", headers={"Cookie": f"{DEVICE_COOKIE}={device}"})
+    assert DEVICE_COOKIE not in again.cookies  # the device is kept
+    clocked_client.cookies.clear()
+    profiles = [first.cookies[COOKIE], again.cookies[COOKIE]]
+    assert profiles[0] != profiles[1]
+
+    def press(secret: str, device_cookie: str) -> dict:
+        cookies = f"{COOKIE}={secret}; {DEVICE_COOKIE}={device_cookie}"
+        response = clocked_client.post(
+            "/api/playnow", json={"game": "eight_ball"}, headers={"Cookie": cookies}
+        )
+        return dict(response.json())
+
+    assert press(profiles[0], device)["status"] == "waiting"
+    assert press(profiles[1], device)["status"] == "waiting"  # one device: not paired
+    clock.advance(15.0)
+    assert wave(clocked_client) == 0
+    other = clocked_client.get("/api/players/me")
+    stranger = (other.cookies[COOKIE], other.cookies[DEVICE_COOKIE])
+    clocked_client.cookies.clear()
+    assert stranger[1] != device
+    assert press(*stranger)["status"] == "matched"
 
 
 def test_the_leaderboard_orders_by_rating_minus_two_deviations(clocked_client, clock):
@@ -487,6 +561,7 @@ def test_a_hundred_concurrent_play_now_presses_make_fifty_rooms(settings):
 def test_a_ranked_room_brought_back_after_a_restart_is_still_rated(settings, clock):
     with TestClient(app_with(settings, clock=clock.clock)) as client:
         ana, ben = Visitor(client), Visitor(client)
+        with_records(client, clock.now, ana, ben)
         a, b = paired(ana, ben)
     with TestClient(app_with(settings, clock=clock.clock)) as client:
         ana.client = ben.client = client
@@ -500,11 +575,7 @@ def test_a_ranked_room_brought_back_after_a_restart_is_still_rated(settings, clo
                 assert over["match"]["match_winner"] == 1
         mine = ana.call("GET", "/api/players/me").json()
         theirs = ben.call("GET", "/api/players/me").json()
-    assert [r["games"] for r in mine["ratings"]] == [
-        1,
-        0,
-        0,
-        0,
-    ]  # 8-ball, 9-ball, snooker, three-cushion
+    games = [COUNTED_GAMES + 1, 0, 0, 0]  # 8-ball, 9-ball, snooker, three-cushion
+    assert [r["games"] for r in mine["ratings"]] == games
     assert mine["ratings"][0]["rating"] < 1500 < theirs["ratings"][0]["rating"]
     assert theirs["recent"][0]["won"] and not mine["recent"][0]["won"]

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import pytest
 
-from server.players import KindRating, rate_match
-from tests.api.test_players import Visitor, at_the_table, both_visit, break_rack
+from server.players import COUNTED_GAMES, KindRating, rate_match
+from tests.api.test_players import Visitor, at_the_table, both_visit, break_rack, with_records
 from tests.support.messages import state_where
 from tests.support.rooms import create_room
 
@@ -33,6 +33,7 @@ def eight_ball(visitor: Visitor) -> dict:
 
 def test_a_ranked_friends_table_moves_both_ratings_by_glicko2(clocked_client, clock):
     ana, ben = Visitor(clocked_client), Visitor(clocked_client)
+    with_records(clocked_client, clock.now, ana, ben)
     room_id = ranked_room(ana)
     assert clocked_client.get(f"/api/rooms/{room_id}").json()["ranked"] is True
     (listed,) = [
@@ -59,7 +60,8 @@ def test_a_ranked_friends_table_moves_both_ratings_by_glicko2(clocked_client, cl
     assert got_a["rating"] == pytest.approx(expect_a.rating.rating, abs=0.01)
     assert got_a["rd"] == pytest.approx(expect_a.rating.rd, abs=0.01)
     assert got_b["rating"] == pytest.approx(expect_b.rating.rating, abs=0.01)
-    assert (got_a["games"], got_a["wins"], got_b["games"], got_b["wins"]) == (1, 1, 1, 0)
+    games = COUNTED_GAMES + 1
+    assert (got_a["games"], got_a["wins"], got_b["games"], got_b["wins"]) == (games, 1, games, 0)
     (recent,) = ana.call("GET", "/api/players/me").json()["recent"]
     assert recent["room_id"] == room_id and recent["opponent"] == ben.profile["name"]
 

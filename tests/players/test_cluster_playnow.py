@@ -16,18 +16,11 @@ import pytest
 from server.store import Database
 from server.store.players import PlayerRows
 from tests.cluster.servers import ServerSet
-from tests.cluster.sockets import connect, send, until
 from tests.support import waiting
-from tests.support.games import (
-    BREAK,
-    EIGHT_BALL,
-    EIGHT_BALL_GROUP_SHOT,
-    EIGHT_BALL_PLACE,
-    EIGHT_BALL_SCRATCH,
-    shoot_message,
-)
+from tests.support.games import EIGHT_BALL
 from tests.support.postgres import PostgresServer, postgres  # noqa: F401  (a fixture)
 from tests.support.redis import RedisServer, redis  # noqa: F401  (a fixture)
+from tests.support.visits import visit_and_concede
 
 pytestmark = [pytest.mark.timeout(180), pytest.mark.redis, pytest.mark.postgres, pytest.mark.slow]
 COOKIE = "pool_player"
@@ -165,35 +158,6 @@ def owner_moved(base: str, room_id: str, old_url: str, within: float = 20.0) -> 
     raise AssertionError("the room was not taken over in time")
 
 
-async def visit_and_concede(url: str, breaker_token: str, other_token: str) -> dict:
-    """Seat 0 breaks (`EIGHT_BALL`: legal) and scratches, seat 1 takes ball in hand and
-    pots a ball, then concedes (a match is rated once each side has played); the final
-    `state`."""
-    breaker, _, _ = await connect(url, breaker_token)
-    other, _, _ = await connect(url, other_token)
-    place = {"type": "place_cue", "x": EIGHT_BALL_PLACE[0], "y": EIGHT_BALL_PLACE[1]}
-    try:
-        for shooter, message in (
-            (breaker, shoot_message(BREAK)),
-            (breaker, shoot_message(EIGHT_BALL_SCRATCH)),
-            (other, place),
-            (other, shoot_message(EIGHT_BALL_GROUP_SHOT)),
-        ):
-            await send(shooter, message)
-            if message is place:
-                await until(other, "state")
-                continue
-            await until(other, "shot_result")
-            await until(other, "state")
-        await send(other, {"type": "concede"})
-        while not (state := (await until(breaker, "state"))[-1])["match"]["match_over"]:
-            pass
-        return state
-    finally:
-        await breaker.close()
-        await other.close()
-
-
 def test_a_ranked_room_taken_over_after_its_server_died_is_still_rated(
     redis: RedisServer,  # noqa: F811
     postgres: PostgresServer,  # noqa: F811
@@ -227,7 +191,7 @@ def test_a_ranked_room_taken_over_after_its_server_died_is_still_rated(
                     time.sleep(0.2)
         (result,) = mine["recent"]
         assert result["won"] == (seat_a["seat"] == 0)  # seat 0 won
-        assert [r["games"] for r in mine["ratings"]] == [1, 0]
+        assert [r["games"] for r in mine["ratings"]] == [1, 0, 0, 0]  # 8-ball, 9-ball, snooker, three-cushion
     finally:
         for server in group.all:
             server.stop()

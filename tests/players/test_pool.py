@@ -108,3 +108,17 @@ def test_two_entries_from_one_address_are_never_paired():
     assert pool.get(left) is not None
     unknown = entry("dan", 1500, since=3.0)  # no address known: paired as before
     assert pool.join(unknown) is not None and pool.get(left) is None
+
+
+def test_two_entries_from_one_device_are_never_paired():
+    """Two profiles of one browser (its device id), even from two addresses."""
+    pool = MatchPool()
+    ana = Waiting("ana", "Ana", "eight_ball", 1500, 0.0, "k-a", address="10.0.0.1", device="d1")
+    ben = Waiting("ben", "Ben", "eight_ball", 1500, 1.0, "k-b", address="10.0.0.2", device="d1")
+    assert pool.join(ana) is None and pool.join(ben) is None
+    assert pool.pair(now=100.0) == []
+    cara = Waiting("cara", "Cara", "eight_ball", 1500, 2.0, "k-c", address="10.0.0.3", device="d2")
+    pairing = pool.join(cara)
+    assert pairing is not None and pairing.second.player_id == "cara"
+    dan = Waiting("dan", "Dan", "eight_ball", 1500, 3.0, "k-d", address="10.0.0.4")  # no device
+    assert pool.join(dan) is not None

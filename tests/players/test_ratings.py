@@ -10,6 +10,7 @@ import pytest
 from server.ai import Bot
 from server.players import (
     COMPUTER_RATINGS,
+    COUNTED_GAMES,
     PROVISIONAL_RD,
     RATING_PERIOD,
     KindRating,
@@ -17,6 +18,7 @@ from server.players import (
     nearest_level,
     rate,
     rate_match,
+    rate_ranked,
     standings,
 )
 
@@ -84,3 +86,32 @@ def test_the_level_gaps_come_from_the_measured_win_shares(share: float, gap: flo
     assert 400 * math.log10(share / (1 - share)) == pytest.approx(gap, abs=1)
     steps = list(COMPUTER_RATINGS.values())
     assert round(gap) in [round(b - a) for a, b in itertools.pairwise(steps)]
+
+
+def test_a_result_moves_a_rating_only_against_an_opponent_with_a_record():
+    """The farm rule: fresh profiles are free to make, so a win over one (or a loss) leaves
+    the other player's rating as it was; the games are counted, and the fresh side is
+    rated by Glicko-2 against the one with a record."""
+    known = KindRating("ana", "eight_ball", Rating(1600, 80, 0.06), COUNTED_GAMES, 5, NOW)
+    fresh = KindRating("ben", "eight_ball")
+    a, b = rate_ranked(known, fresh, first_won=True, now=NOW)
+    assert a.rating == known.rating and (a.games, a.wins, a.rated_at) == (11, 6, NOW)
+    assert b.rating == rate_match(known, fresh, True, NOW)[1].rating
+    assert (b.games, b.wins) == (1, 0)
+    f1, f2 = rate_ranked(fresh, KindRating("cara", "eight_ball"), first_won=True, now=NOW)
+    assert f1.rating == f2.rating == Rating()  # two fresh profiles move nobody
+    assert (f1.games, f1.wins, f2.games, f2.wins) == (1, 1, 1, 0)
+
+
+def test_between_players_with_records_the_ladder_rates_by_glicko2_untouched():
+    ana = KindRating("ana", "eight_ball", Rating(1600, 80, 0.06), COUNTED_GAMES, 5, NOW)
+    ben = KindRating("ben", "eight_ball", Rating(1500, 200, 0.06), COUNTED_GAMES + 3, 6, NOW)
+    assert rate_ranked(ana, ben, False, NOW) == rate_match(ana, ben, False, NOW)
+
+
+def test_a_kept_rating_still_takes_the_time_away_into_account():
+    """The rating kept is the one as of the match: its deviation grown over the idle days."""
+    away = KindRating("ana", "eight_ball", Rating(1600, 60, 0.06), 30, 15, NOW)
+    later = NOW + 100 * RATING_PERIOD
+    a, _ = rate_ranked(away, KindRating("ben", "eight_ball"), True, later)
+    assert a.rating == away.at(later) and a.rating.rd > 60 and a.rated_at == later

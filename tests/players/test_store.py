@@ -7,10 +7,11 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from sqlalchemy import update
 
 from server.ladder import RankedRoom, rate_in_store
-from server.players import KindRating, Rating, rate_match
-from server.store import Database, Repository
+from server.players import COUNTED_GAMES, KindRating, Rating, rate_match
+from server.store import Database, Repository, schema
 from server.store.players import PlayerRows, RankedRecord, RatingRecord
 from tests.support.postgres import PostgresServer, postgres  # noqa: F401  (the fixture)
 
@@ -73,13 +74,17 @@ def test_a_ranked_room_is_rated_once_from_the_stored_ratings(db: Database) -> No
     players(db, "Ana", "Ben")
     ana = RatingRecord("ana", "nine_ball", 1600.0, 80.0, 0.06, 12, 7, NOW - 86_400)
     db.run(lambda repo: PlayerRows(repo).save_rating(ana))
+    # Ben has a record (the farm rule: a result moves a rating only against one).
+    ben = RatingRecord("ben", "nine_ball", 1500.0, 350.0, 0.06, COUNTED_GAMES, 0, NOW)
+    db.run(lambda repo: PlayerRows(repo).save_rating(ben))
     room = RankedRoom("room-1", "nine_ball", ("ana", "ben"), ("Ana", "Ben"))
     db.run(lambda repo: PlayerRows(repo).add_ranked(ranked_record(room)))
     assert [r.room_id for r in db.run(lambda repo: PlayerRows(repo).open_ranked())] == ["room-1"]
     assert db.run(lambda repo: rate_in_store(PlayerRows(repo), room, 9, 1, NOW)) is True
     assert db.run(lambda repo: rate_in_store(PlayerRows(repo), room, 9, 0, NOW)) is False
     stored_a = KindRating("ana", "nine_ball", Rating(1600.0, 80.0, 0.06), 12, 7, NOW - 86_400)
-    new_a, new_b = rate_match(stored_a, KindRating("ben", "nine_ball"), False, NOW)
+    stored_b = KindRating("ben", "nine_ball", Rating(), COUNTED_GAMES, 0, NOW)
+    new_a, new_b = rate_match(stored_a, stored_b, False, NOW)
     got_a = db.run(lambda repo: PlayerRows(repo).rating("ana", "nine_ball"))
     got_b = db.run(lambda repo: PlayerRows(repo).rating("ben", "nine_ball"))
     assert got_a is not None and got_b is not None
@@ -89,7 +94,7 @@ def test_a_ranked_room_is_rated_once_from_the_stored_ratings(db: Database) -> No
         13,
         7,
     )
-    assert (got_b.rating, got_b.games, got_b.wins) == (new_b.rating.rating, 1, 1)
+    assert (got_b.rating, got_b.games, got_b.wins) == (new_b.rating.rating, COUNTED_GAMES + 1, 1)
     (result,) = db.run(lambda repo: PlayerRows(repo).ranked_of("ben", 10))
     assert (result.match_id, result.winner, result.finished_at) == (9, 1, NOW)
     assert result.before is not None and result.before[0][0] == 1600.0
@@ -133,3 +138,56 @@ def test_a_players_seats_bring_their_matches(db: Database) -> None:
     ]
     assert played[1].players == ["Ana", "Ben"] and played[1].finished_at == NOW + 60
     assert db.run(lambda repo: PlayerRows(repo).matches_of("ana", 1))[0].match_id == 2
+
+
+def test_a_result_against_a_fresh_profile_moves_only_the_fresh_profile(db: Database) -> None:
+    """The farm rule in the store's transaction: Ana (a record) beats Ben (none): Ben is
+    rated against Ana, Ana keeps her rating; both games are counted."""
+    players(db, "Ana", "Ben")
+    ana = RatingRecord("ana", "eight_ball", 1600.0, 80.0, 0.06, 12, 7, NOW)
+    db.run(lambda repo: PlayerRows(repo).save_rating(ana))
+    room = RankedRoom("room-3", "eight_ball", ("ana", "ben"), ("Ana", "Ben"))
+    db.run(lambda repo: PlayerRows(repo).add_ranked(ranked_record(room)))
+    assert db.run(lambda repo: rate_in_store(PlayerRows(repo), room, 4, 0, NOW)) is True
+    got_a = db.run(lambda repo: PlayerRows(repo).rating("ana", "eight_ball"))
+    got_b = db.run(lambda repo: PlayerRows(repo).rating("ben", "eight_ball"))
+    assert got_a is not None and got_b is not None
+    assert (got_a.rating, got_a.rd, got_a.games, got_a.wins) == (1600.0, 80.0, 13, 8)
+    _, expect_b = rate_match(
+        KindRating("ana", "eight_ball", Rating(1600.0, 80.0, 0.06), 12, 7, NOW),
+        KindRating("ben", "eight_ball"),
+        True,
+        NOW,
+    )
+    assert (got_b.rating, got_b.games, got_b.wins) == (expect_b.rating.rating, 1, 0)
+    assert got_b.rating < 1500
+
+
+def test_guests_that_never_played_are_pruned_once_old_enough(db: Database) -> None:
+    """Only a guest made before the cutoff with no seat, no rating, no ranked room and not
+    kept (waiting for Play now) is deleted; `limit` bounds one statement."""
+    players(db, "Old", "Seated", "Rated", "Ranked", "Queued", "Twin", "Account")
+
+    def make_account(repo: Repository) -> None:  # an account never plays to be kept
+        with repo.transaction() as conn:
+            conn.execute(
+                update(schema.players)
+                .where(schema.players.c.id == "account")
+                .values(name_key="account", account_at=NOW)
+            )
+
+    db.run(make_account)
+    db.run(lambda repo: PlayerRows(repo).add_player("new", "New", "hash-New", NOW + 10))
+    db.run(lambda repo: PlayerRows(repo).add_player_seat("seated", "room-1", 0, NOW))
+    rated = RatingRecord("rated", "eight_ball", 1500.0, 350.0, 0.06, 1, 0, NOW)
+    db.run(lambda repo: PlayerRows(repo).save_rating(rated))
+    room = RankedRoom("room-2", "eight_ball", ("old", "ranked"), ("Old", "Ranked"))
+    db.run(lambda repo: PlayerRows(repo).add_ranked(ranked_record(room)))
+    cutoff = NOW + 5
+    prune = PlayerRows.prune_guests
+    assert db.run(lambda repo: prune(PlayerRows(repo), cutoff, {"queued"}, 1)) == 1  # twin
+    assert db.run(lambda repo: prune(PlayerRows(repo), cutoff, {"queued"}, 10)) == 0
+    left = {"old", "seated", "rated", "ranked", "queued", "twin", "account", "new"}
+    kept = {p for p in left if db.run(lambda repo, p=p: PlayerRows(repo).player(p)) is not None}
+    assert kept == {"old", "seated", "rated", "ranked", "queued", "account", "new"}
+    assert db.run(lambda repo: prune(PlayerRows(repo), cutoff, set(), 10)) == 1  # queued

@@ -9,7 +9,7 @@ from collections.abc import Awaitable, Callable
 import pytest
 
 from server.rooms import ActionError
-from server.rooms.planner_share import PlannerShare, planner_share
+from server.rooms.planner_share import PlannerShare, PlanningBudget, planner_share
 
 pytestmark = pytest.mark.timeout(30)
 
@@ -203,3 +203,59 @@ def test_an_analysis_waits_while_any_computer_plans():
         assert not share.idle_waiters
 
     asyncio.run(main())
+
+
+class Clock:
+    """The share's clock, moved by the stand-in plans (no sleeping)."""
+
+    def __init__(self) -> None:
+        self.now = 0.0
+
+    def __call__(self) -> float:
+        return self.now
+
+
+def test_an_address_that_spent_its_planning_budget_is_refused_until_the_minute_passes():
+    """20 s of planning a minute per address: three 8 s hints spend it, the fourth is
+    refused at once (another address is still served), and a minute after the first
+    hint ended the address may ask again."""
+    clock = Clock()
+    share = PlannerShare(slots=1, clock=clock)
+
+    def plan(seconds: float) -> Callable[[], Awaitable[str]]:
+        async def run() -> str:
+            clock.now += seconds
+            return "planned"
+
+        return run
+
+    async def ask_as(address: str) -> str:
+        key = ("address", address)
+        return await share.hint(
+            [key], plan(8.0), max_waiting=8, max_wait=30.0, budgeted=[key], budget=20.0
+        )
+
+    async def scenario() -> list[str]:
+        answers = [await ask_as("10.0.0.1") for _ in range(3)]  # ends at 8, 16 and 24 s
+        for address in ("10.0.0.1", "10.0.0.2"):
+            try:
+                answers.append(await ask_as(address))
+            except ActionError as exc:
+                answers.append(exc.code)
+        clock.now = 8.0 + 60.0  # the first plan leaves the minute: 16 s spent
+        answers.append(await ask_as("10.0.0.1"))
+        return answers
+
+    answers = asyncio.run(scenario())
+    assert answers == ["planned"] * 3 + ["planning_budget", "planned", "planned"]
+    # At 76 s the plans that ended at 24 s and 76 s are within the minute.
+    assert share.budget.spent(("address", "10.0.0.1")) == 16.0
+
+
+def test_a_budget_forgets_requesters_without_a_plan_in_the_minute():
+    clock = Clock()
+    budget = PlanningBudget(clock=clock)
+    budget.charge("a", 3.0)
+    clock.now = 61.0
+    budget.charge("b", 1.0)
+    assert set(budget.plans) == {"b"} and budget.spent("a") == 0.0

@@ -17,6 +17,7 @@ UNLIMITED: dict[str, Any] = {
     "watch_rate": "100000/minute",
     "player_create_rate": "100000/minute",  # every browser test's page makes a profile
     "queue_rate": "100000/minute",
+    "hint_budget": 3600.0,  # s of planning an address may use in a minute
     "playnow_same_address": True,  # every test's players ask from one address
     "player_chat_burst": 1000.0,
     "spectator_chat_burst": 1000.0,
