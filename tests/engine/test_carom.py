@@ -11,16 +11,17 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from server.engine import BallSet, MotionState, Shot, Table, rack, simulate, step, strike
+from server.engine import BallSet, MotionState, Shot, Table, rack, simulate, step
 from server.engine.params import DEFAULT_PARAMS, params_for
 from server.engine.physics.motion import classify
 from server.engine.rack import RED, WHITE, YELLOW
 from server.engine.simulate import settle
 
 from .conftest import in_play_area, pair_min_gap
+from .styled_tables import SHOTS, assert_energy_never_rises, placements
 
 CAROM = Table.carom()
 R = CAROM.ball_radius
@@ -100,44 +101,14 @@ def test_a_hard_shot_runs_without_overlap_on_the_bed_and_twice_the_same(tip):
     assert sum(e.kind == "cushion" for e in result.events) >= 3
 
 
-@st.composite
-def placements(draw):
-    xs = st.floats(R, CAROM.length - R, allow_nan=False)
-    ys = st.floats(R, CAROM.width - R, allow_nan=False)
-    spots: list[tuple[float, float]] = []
-    for _ in range(3):
-        x, y = draw(xs), draw(ys)
-        assume(all(math.hypot(x - a, y - b) >= 2 * R for a, b in spots))
-        spots.append((x, y))
-    return BallSet.place(dict(enumerate(spots)))
-
-
 @settings(
     max_examples=20,
     deadline=None,
     suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow],
 )
-@given(
-    balls=placements(),
-    shot=st.builds(
-        Shot,
-        angle=st.floats(-math.pi, math.pi, allow_nan=False),
-        speed=st.floats(0.05, 8.0, allow_nan=False),
-        tip=st.tuples(st.floats(-0.35, 0.35), st.floats(-0.35, 0.35)),
-    ),
-)
+@given(balls=placements(CAROM, st.just(3)), shot=SHOTS)
 def test_kinetic_energy_never_increases_on_the_carom_table(balls, shot):
-    params = params_for(CAROM)
-    strike(balls, shot, params)
-    energy = balls.kinetic_energy(params.mass, R)
-    for k in range(6000):
-        step(CAROM, balls, TICK, k * TICK)
-        now = balls.kinetic_energy(params.mass, R)
-        assert now <= energy * (1 + 1e-12) + 1e-15
-        energy = now
-        if balls.at_rest():
-            break
-    assert balls.at_rest()
+    assert_energy_never_rises(CAROM, balls, shot, ticks=6000)
     assert balls.on_table.all()
 
 

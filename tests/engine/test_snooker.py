@@ -14,15 +14,16 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from server.engine import BallSet, MotionState, Shot, Table, rack, simulate, step, strike
+from server.engine import MotionState, Shot, Table, rack, simulate
 from server.engine.params import params_for
 from server.engine.rack import COLOURS, REDS
 from tests.support.rolling import roll
 
 from .conftest import in_play_area, pair_min_gap
+from .styled_tables import SHOTS, assert_energy_never_rises, placements
 
 SNOOKER = Table.snooker()
 R = SNOOKER.ball_radius
@@ -94,46 +95,14 @@ def test_the_break_runs_without_overlap_on_the_bed_and_twice_the_same():
     assert result.final.at_rest()
 
 
-@st.composite
-def placements(draw, max_balls=6):
-    n = draw(st.integers(2, max_balls))
-    xs = st.floats(R, SNOOKER.length - R, allow_nan=False)
-    ys = st.floats(R, SNOOKER.width - R, allow_nan=False)
-    spots: list[tuple[float, float]] = []
-    for _ in range(n):
-        x, y = draw(xs), draw(ys)
-        assume(all(math.hypot(x - a, y - b) >= 2 * R for a, b in spots))
-        assume(in_play_area(SNOOKER, np.array([x, y]))[0])
-        spots.append((x, y))
-    return BallSet.place(dict(enumerate(spots)))
-
-
 @settings(
     max_examples=20,
     deadline=None,
     suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow],
 )
-@given(
-    balls=placements(),
-    shot=st.builds(
-        Shot,
-        angle=st.floats(-math.pi, math.pi, allow_nan=False),
-        speed=st.floats(0.05, 8.0, allow_nan=False),
-        tip=st.tuples(st.floats(-0.35, 0.35), st.floats(-0.35, 0.35)),
-    ),
-)
+@given(balls=placements(SNOOKER, st.integers(2, 6)), shot=SHOTS)
 def test_kinetic_energy_never_increases_on_the_snooker_table(balls, shot):
-    params = params_for(SNOOKER)
-    strike(balls, shot, params)
-    energy = balls.kinetic_energy(params.mass, R)
-    for k in range(4000):
-        step(SNOOKER, balls, TICK, k * TICK)
-        now = balls.kinetic_energy(params.mass, R)
-        assert now <= energy * (1 + 1e-12) + 1e-15
-        energy = now
-        if balls.at_rest():
-            break
-    assert balls.at_rest()
+    assert_energy_never_rises(SNOOKER, balls, shot, ticks=4000)
 
 
 def _drops(name, start, direction, speed):
