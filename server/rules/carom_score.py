@@ -87,22 +87,18 @@ def is_point(path: Sequence[int], cue: int) -> bool:
     """UMB Art. 83: the cue ball meets both other balls and at least three cushions
     before it meets the second; the cushions and the first ball in any order, one
     cushion counted as often as it is met."""
-    others = {WHITE, YELLOW, RED} - {cue}
-    met: set[int] = set()
-    cushions = 0
-    for what in path:
-        if what == CUSHION:
-            cushions += 1
-        elif what in others:
-            met.add(what)
-            if len(met) == len(others):
-                return cushions >= CUSHIONS_NEEDED
-    return False
+    cushions, both = _to_second_ball(path, cue)
+    return both and cushions >= CUSHIONS_NEEDED
 
 
 def cushions_before_second(path: Sequence[int], cue: int) -> int:
     """The cushions the cue ball met before the second ball (all of them without one):
     what the screen counts as the shot plays."""
+    return _to_second_ball(path, cue)[0]
+
+
+def _to_second_ball(path: Sequence[int], cue: int) -> tuple[int, bool]:
+    """The cushions met before the second ball, and whether the cue ball met it."""
     others = {WHITE, YELLOW, RED} - {cue}
     met: set[int] = set()
     cushions = 0
@@ -112,5 +108,5 @@ def cushions_before_second(path: Sequence[int], cue: int) -> int:
         elif what in others:
             met.add(what)
             if len(met) == len(others):
-                break
-    return cushions
+                return cushions, True
+    return cushions, False
