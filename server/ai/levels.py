@@ -36,7 +36,9 @@ class Level:
     (`search.LATE_BALLS`); windows: it aims a pot at the middle of the directions in
     which the ball drops, found with the engine (`aiming.pocket_window`), not at the
     middle of the mouth; jumps: when a legal ball's straight path is blocked, it also
-    tries jumping the cue ball over the blocker (`search.JUMPS`) among its escapes.
+    tries jumping the cue ball over the blocker (`search.JUMPS`) among its escapes;
+    masse: when it is blocked (at any distance), it also tries curving the cue ball
+    round the blocker with a raised cue and side spin (`search.CURVES`).
     """
 
     name: str
@@ -59,6 +61,7 @@ class Level:
     late_strokes: bool = False
     windows: bool = False
     jumps: bool = False
+    masse: bool = False
 
     @property
     def chance_model(self) -> ChanceModel:
@@ -86,7 +89,7 @@ LEVEL_TABLE: tuple[Level, ...] = (
     Level("amateur", 0.7, 0.18, 2.0, 6, 3, 3, 4, 6, True, 2, 0.6, budget=350),
     Level("club", 0.35, 0.11, 1.0, 8, 3, 3, 6, 10, True, 3, 1.0, 2, 10, 550, 2),
     Level("pro", 0.125, 0.075, 0.5, 16, 4, 5, 16, 30, True, 3, 1.0, 4, 60, 3900, 14, True, True,
-          windows=True, jumps=True),
+          windows=True, jumps=True, masse=True),
 )
 # fmt: on
 LEVELS: tuple[str, ...] = tuple(level.name for level in LEVEL_TABLE)

@@ -80,6 +80,14 @@ KICK_SPEEDS = (1.5, 2.6, 4.0)
 # and 4-5 m/s, one 20-25 cm ahead from 35 degrees (docs/engine.md).
 JUMPS = ((40.0, 4.0), (40.0, 5.0), (45.0, 4.0), (45.0, 5.0))
 JUMP_REACH = (0.1, 0.35)  # m from the cue ball to the blocker: nearer or further, no jump
+# Swerves and masses round a ball in the way (the pro level, any distance): the cue raised
+# so (degrees) at these speeds, struck `CURVE_SIDE` along the cue to one side and aimed
+# off the blocked line to the other, so the curve comes back to the ball. The engine
+# curves a 15-degree swerve about 5 cm over 1 m and a 60-degree masse at 2 m/s 58 cm
+# (docs/engine.md): a swerve slips by a ball far ahead, a masse bends round a near one.
+CURVES = ((20.0, 1.5), (20.0, 4.5), (35.0, 3.5), (60.0, 2.5), (60.0, 3.5))
+CURVE_SIDE = 0.45  # of the radius, along the cue
+CURVE_AIMS = (1.0, 1.6, 2.4, 3.5)  # times the turn off the line that just passes the blocker
 KICK_OFFSETS = (-2.0, -0.8, 0.0, 0.8, 2.0)  # degrees off the mirror-image line
 SWEEP_SPEEDS = (1.6, 3.2)
 SWEEP_ANGLES = 40
@@ -577,8 +585,10 @@ class Search:
         return out
 
     def escape_candidates(self, balls: BallSet) -> list[Candidate]:
-        """The kicks and, at a level that jumps, the jumps: judged side by side."""
-        return self.kick_candidates(balls) + self.jump_candidates(balls)
+        """The kicks and, at a level that jumps, the jumps, swerves and masses: judged
+        side by side."""
+        kicks = self.kick_candidates(balls)
+        return kicks + self.jump_candidates(balls) + self.curve_candidates(balls)
 
     def jump_candidates(self, balls: BallSet) -> list[Candidate]:
         """Jumps at the nearest legal balls whose straight path from the cue ball is
@@ -602,6 +612,38 @@ class Search:
                 tip = tip_seen_level((0.0, 0.0), elevation)
                 shot = Shot(math.atan2(ty - cy, tx - cx), speed, tip, elevation)
                 out.append(Candidate(shot, call, "kick", t))
+        return out
+
+    def curve_candidates(self, balls: BallSet) -> list[Candidate]:
+        """Swerves and masses at the two nearest legal balls whose straight path from the
+        cue ball is blocked (by a ball at any distance): for each side of the nearest
+        blocker, aimed `CURVE_AIMS` times the turn that passes it on that side, with side
+        spin that curves back (right spin curves right), raised and struck as `CURVES`
+        says; the simulations judge them like kicks."""
+        if not self.level.masse:
+            return []
+        r = self.table.ball_radius
+        cue = balls.position_of(CUE)
+        call = self.default_call(balls)
+        on = set(balls.on_table_ids())
+        targets = [t for t in self.targets(self.pos) if t in on]
+        targets.sort(key=lambda t: math.dist(balls.position_of(t), cue))
+        out = []
+        for t in targets[:2]:
+            target = balls.position_of(t)
+            blockers = _in_the_way(balls, cue, target, t, r)
+            if not blockers:
+                continue
+            along, across = min(blockers)
+            direct = math.atan2(target[1] - cue[1], target[0] - cue[0])
+            for left in (1.0, -1.0):  # pass the blocker on the left (+) or the right
+                turn = math.atan2(2 * r + left * across, along)
+                for degrees, speed in CURVES:
+                    elevation = math.radians(degrees)
+                    tip = tip_seen_level((left * CURVE_SIDE, 0.0), elevation)
+                    for factor in CURVE_AIMS:
+                        angle = direct + left * turn * factor
+                        out.append(Candidate(Shot(angle, speed, tip, elevation), call, "kick", t))
         return out
 
     def sweep_candidates(
@@ -694,6 +736,26 @@ class Search:
         nx, ny = balls.position_of(near)
         shot = clamp_shot(math.atan2(ny - cy, nx - cx), 2.0, 0.0, 0.0)
         return Candidate(shot, self.default_call(balls), "safety", near)
+
+
+def _in_the_way(
+    balls: BallSet, cue: tuple[float, float], target: tuple[float, float], ball: int, r: float
+) -> list[tuple[float, float]]:
+    """The balls on the straight path from the cue ball to `ball`: each as (along, across),
+    its centre's distance down the line and to the left of it (m)."""
+    dx, dy = target[0] - cue[0], target[1] - cue[1]
+    length = math.hypot(dx, dy)
+    out = []
+    for other in balls.on_table_ids():
+        if other in (CUE, ball):
+            continue
+        ox, oy = balls.position_of(other)
+        along = ((ox - cue[0]) * dx + (oy - cue[1]) * dy) / length
+        across = (dx * (oy - cue[1]) - dy * (ox - cue[0])) / length
+        past = max(along - (length - 2 * r), 0.0)  # beyond where the cue ball meets `ball`
+        if along > 0.0 and past * past + across * across < 4 * r * r:
+            out.append((along, across))
+    return out
 
 
 def _blocked_near(

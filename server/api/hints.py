@@ -49,7 +49,7 @@ class Hint(BaseModel):
     chance: float | None  # the share of its noisy trials that pocketed a ball legally
     via: str | None = None  # a pot's route: "direct", "bank" (off a cushion), "combo", "carom",
     # "billiard" (the cue ball glances off the first ball into the one it pots)
-    elevation: float = 0.0  # the cue's elevation, radians (a jump); left out when level
+    elevation: float = 0.0  # the cue's elevation, radians (a jump, swerve or massé); 0 is left out
 
 
 def hint_ask(settings: Settings, address: str | None, player: str | None) -> HintAsk:
