@@ -74,7 +74,7 @@ from numba import njit
 from bench.fastfiz import fastfiz_table
 from server.ai import LEVELS, Bot, Turn, play_turn
 from server.ai.aiming import clamp_shot, perturb
-from server.ai.bot import NormalSource
+from server.ai.bot import NormalSource, level_at
 from server.ai.geometry import (
     ChanceModel,
     clean_window,
@@ -116,8 +116,8 @@ class Greedy:
         self._arm = Bot(LEVELS[-1])
         self.last_sims = 0
 
-    def execute(self, shot: Shot, rng: NormalSource) -> Shot:
-        return self._arm.execute(shot, rng)
+    def execute(self, shot: Shot, rng: NormalSource, table: Table | None = None) -> Shot:
+        return self._arm.execute(shot, rng, table)
 
     def plan(self, game: Game, seat: int) -> Turn:  # noqa: ARG002 (`Bot.plan`'s signature)
         if game.decision is not None:
@@ -197,14 +197,14 @@ class Arm:
     level: Level
     parts: tuple[str, ...] = FULL_NOISE
 
-    def execute(self, shot: Shot, rng: NormalSource) -> Shot:
+    def execute(self, shot: Shot, rng: NormalSource, table: Table | None = None) -> Shot:
         draws = np.array([float(rng.normal(0.0, 1.0)) for _ in range(4)])
         parts = self.parts
         keep = np.array(["aim" in parts, "speed" in parts, "tip" in parts, "tip" in parts])
         return perturb(
             shot,
             draws * keep,
-            self.level,
+            level_at(self.level, table),
             squirt="squirt" in parts,
             cue_speed="ball-speed" not in parts,
         )

@@ -124,6 +124,13 @@ class Turn:
     via: str | None = None
 
 
+def level_at(level: Level, table: Table | None) -> Level:
+    """`level` with its tip error in `table`'s balls' radii (a pool ball's when None)."""
+    if table is not None and table.ball_radius != BALL_RADIUS:
+        return carom_level(level, table)
+    return level
+
+
 class Bot:
     """A computer player of one level (`Bot.LEVELS`, weakest first)."""
 
@@ -152,10 +159,7 @@ class Bot:
         if rng is None:
             return shot
         noise = np.array([float(rng.normal(0.0, 1.0)) for _ in range(4)])
-        level = self.level
-        if table is not None and table.ball_radius != BALL_RADIUS:
-            level = carom_level(level, table)
-        return perturb(shot, noise, level)
+        return perturb(shot, noise, level_at(self.level, table))
 
     # --- planning ---------------------------------------------------------------------
     def plan(self, game: Game, seat: int) -> Turn:
