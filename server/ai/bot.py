@@ -395,8 +395,8 @@ class Bot:
 
 def hand_budget(budget: int, on_table: int) -> int:
     """The simulations a ball-in-hand turn may spend with `on_table` balls on the table
-    (the cue ball in hand is not): the whole budget up to a pool rack's `RACK_BALLS`, less
-    beyond (`RACK_BALLS`' comment)."""
+    (the cue ball counted when the rules keep it there, as at the break-off): the whole
+    budget up to a pool rack's `RACK_BALLS`, less beyond (`RACK_BALLS`' comment)."""
     if on_table <= RACK_BALLS:
         return budget
     return int(budget * (RACK_BALLS / on_table) ** 2)
