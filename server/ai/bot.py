@@ -39,8 +39,10 @@ SAY_POT_FROM = 0.5  # a safety or kick that pockets at least this often is repor
 # costs more (more balls to collide, the pack), so the turn searches a smaller share of
 # the budget, by (RACK_BALLS / balls on the table) squared: the break-off's plan fits the
 # plan-time goal (docs/ai.md, "Snooker"). A pool table never has more, so its plans are
-# unchanged.
+# unchanged. A budget of `HAND_FLOOR` or less is kept whole: the levels below the pro
+# plan quickly anyway, and with half theirs the beginner's break-off found no fair hit.
 RACK_BALLS = 16
+HAND_FLOOR = 1000
 
 
 @dataclass(frozen=True)
@@ -396,10 +398,11 @@ class Bot:
 def hand_budget(budget: int, on_table: int) -> int:
     """The simulations a ball-in-hand turn may spend with `on_table` balls on the table
     (the cue ball counted when the rules keep it there, as at the break-off): the whole
-    budget up to a pool rack's `RACK_BALLS`, less beyond (`RACK_BALLS`' comment)."""
+    budget up to a pool rack's `RACK_BALLS`, less beyond but not below `HAND_FLOOR`
+    (their comment)."""
     if on_table <= RACK_BALLS:
         return budget
-    return int(budget * (RACK_BALLS / on_table) ** 2)
+    return max(min(budget, HAND_FLOOR), int(budget * (RACK_BALLS / on_table) ** 2))
 
 
 def _nominated(game: Game, turn: Turn) -> Turn:
