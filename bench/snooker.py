@@ -15,8 +15,7 @@ from __future__ import annotations
 import itertools
 import statistics
 import time
-from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -26,7 +25,10 @@ from server.ai.levels import LEVELS
 from server.ai.play import play_turn
 from server.rules import Game
 
+from .ai import _map  # each worker warmed up first, as a room's planner is
+
 MAX_TURNS = 400  # a frame longer than this is decided on points (a stalemate guard)
+SLOWEST = 3  # the slowest plans printed, with what they searched
 
 
 @dataclass
@@ -38,6 +40,7 @@ class FrameRecord:
     highest: tuple[int, ...]
     plans: dict[int, list[float]] = field(default_factory=dict)
     cut: bool = False
+    slowest: list[tuple[float, int, str]] = field(default_factory=list)  # (s, sims, what)
 
 
 def play_frame(levels: tuple[str, str], seed: int) -> FrameRecord:
@@ -47,11 +50,15 @@ def play_frame(levels: tuple[str, str], seed: int) -> FrameRecord:
     rng = np.random.default_rng(seed)
     plans: dict[int, list[float]] = {0: [], 1: []}
     turns = 0
+    slowest: list[tuple[float, int, str]] = []
     while not game.over and turns < MAX_TURNS:
         seat = game.decision.seat if game.decision else game.turn
+        in_hand = " from the D" if game.ball_in_hand and not game.decision else ""
         t0 = time.process_time()
         turn = bots[seat].plan(game, seat)
         plans[seat].append(time.process_time() - t0)
+        what = f"{turn.decision or turn.kind}{in_hand}, {len(game.balls.on_table_ids())} balls"
+        slowest = sorted([*slowest, (plans[seat][-1], bots[seat].last_sims, what)])[-SLOWEST:]
         play_turn(game, seat, turn, bots[seat], rng)
         turns += 1
     score = game.score
@@ -60,18 +67,11 @@ def play_frame(levels: tuple[str, str], seed: int) -> FrameRecord:
     winner = game.winner
     if winner is None and points[0] != points[1]:
         winner = 0 if points[0] > points[1] else 1
-    return FrameRecord(winner, points, score.highest_break, plans, cut=not game.over)
+    return FrameRecord(winner, points, score.highest_break, plans, not game.over, slowest)
 
 
 def _job(args: tuple[tuple[str, str], int]) -> FrameRecord:
     return play_frame(*args)
-
-
-def _map(fn: Callable, jobs_args: Sequence, jobs: int) -> list:
-    if jobs <= 1:
-        return [fn(a) for a in jobs_args]
-    with ProcessPoolExecutor(jobs) as pool:
-        return list(pool.map(fn, jobs_args))
 
 
 def self_play(frames: int, seed: int, jobs: int, level: str = "pro") -> None:
@@ -90,6 +90,9 @@ def self_play(frames: int, seed: int, jobs: int, level: str = "pro") -> None:
         f"p95 {np.percentile(plans, 95):.2f}, max {max(plans):.2f} over {len(plans)} plans; "
         f"{time.perf_counter() - t0:.0f} s"
     )
+    slow = sorted(p for r in records for p in r.slowest)[-SLOWEST:]
+    said = "; ".join(f"{t:.2f} s, {sims} simulations ({what})" for t, sims, what in reversed(slow))
+    print(f"  slowest plans: {said}")
 
 
 def ladder(frames: int, seed: int, jobs: int, steps: Sequence[str]) -> None:

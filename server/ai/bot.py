@@ -36,6 +36,14 @@ SAFETY_SPOT_DISTANCES = (0.3, 0.15, 0.5)  # m from the ball, the first tried fir
 SAFETY_SPOT_DIRECTIONS = 24
 ACCEPT_ABOVE = 0.5  # take a table (push out, illegal break) with a pot at least this likely
 SAY_POT_FROM = 0.5  # a safety or kick that pockets at least this often is reported as a pot
+# Ball in hand on a table with more balls than a pool rack (snooker's 22): each simulation
+# costs more (more balls to collide, the pack), so the turn searches a smaller share of
+# the budget, by (RACK_BALLS / balls on the table) squared: the break-off's plan fits the
+# plan-time goal (docs/ai.md, "Snooker"). A pool table never has more, so its plans are
+# unchanged. A budget of `HAND_FLOOR` or less is kept whole: the levels below the pro
+# plan quickly anyway, and with half theirs the beginner's break-off found no fair hit.
+RACK_BALLS = 16
+HAND_FLOOR = 1000
 
 
 @dataclass(frozen=True)
@@ -261,7 +269,7 @@ class Bot:
         best: tuple[float, Turn] | None = None
         pairs = max(2, self.level.pairs // 2)
         spots = spots[: self.level.placements]
-        share = self.level.budget // max(len(spots), 1)
+        share = hand_budget(self.level.budget, len(balls.on_table_ids())) // max(len(spots), 1)
         for xy in spots:
             search.limit = search.sims + share
             placed = balls.with_ball(CUE, xy)
@@ -414,6 +422,16 @@ class Bot:
                 return options[0]  # the free ball if offered, else play on
             return "replace" if "replace" in options else "play_again"
         return options[0]
+
+
+def hand_budget(budget: int, on_table: int) -> int:
+    """The simulations a ball-in-hand turn may spend with `on_table` balls on the table
+    (the cue ball counted when the rules keep it there, as at the break-off): the whole
+    budget up to a pool rack's `RACK_BALLS`, less beyond but not below `HAND_FLOOR`
+    (their comment)."""
+    if on_table <= RACK_BALLS:
+        return budget
+    return max(min(budget, HAND_FLOOR), int(budget * (RACK_BALLS / on_table) ** 2))
 
 
 def _nominated(game: Game, turn: Turn) -> Turn:

@@ -146,7 +146,26 @@ def is_miss(pos: Position, score: FrameScore, facts: ShotFacts) -> bool:
         return False
     if snookers_required(score, pos.on_table, pos.turn) > 0:
         return False
-    return pos.balls is not None and not snookered(pos.table, pos.balls, on)
+    return pos.balls is not None and not _snookered_before(pos, on)
+
+
+_last_before: tuple[Table, tuple[bytes, bytes, bytes, tuple[int, ...]], bool] | None = None
+
+
+def _snookered_before(pos: Position, on: Sequence[int]) -> bool:
+    """`snookered` on the table the stroke was played from. The search judges thousands
+    of simulated strokes from one table a turn, so the last answer is kept (a pure
+    function's memo: the same table object, balls and balls on give the same answer)."""
+    global _last_before
+    balls = pos.balls
+    assert balls is not None
+    key = (balls.ids.tobytes(), balls.positions.tobytes(), balls.on_table.tobytes(), tuple(on))
+    last = _last_before
+    if last is not None and last[0] is pos.table and last[1] == key:
+        return last[2]
+    found = snookered(pos.table, balls, on)
+    _last_before = (pos.table, key, found)
+    return found
 
 
 def judge(pos: Position, facts: ShotFacts) -> Ruling:

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from server.ai import Bot
+from server.ai.bot import HAND_FLOOR, RACK_BALLS, hand_budget
 from server.ai.play import play_turn
 from server.engine import MotionState, Table
 from server.rules import Game
@@ -95,3 +96,12 @@ def test_show_me_a_shot_on_the_snooker_practice_table() -> None:
     assert turn.shot is not None
     out, _ = play_turn(game, 0, turn)
     assert out is not None and not out.fouls and game.turn == 0
+
+
+def test_ball_in_hand_on_a_fuller_table_than_a_pool_rack_searches_less() -> None:
+    # The break-off's 22 balls make each simulation dearer: its turn spends a smaller
+    # share of the budget (the plan-time goal); a pool table (16 balls at most) all of it.
+    assert all(hand_budget(3900, n) == 3900 for n in range(RACK_BALLS + 1))
+    assert hand_budget(3900, 21) == int(3900 * (16 / 21) ** 2) < 3900
+    assert hand_budget(3900, 22) < hand_budget(3900, 21)
+    assert hand_budget(550, 22) == 550 and hand_budget(3900, 40) == HAND_FLOOR

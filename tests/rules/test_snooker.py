@@ -5,12 +5,13 @@ reads which ball was hit first and which dropped."""
 
 from dataclasses import replace
 
+import numpy as np
 import pytest
 
 from server.engine import MotionState, Table
 from server.rules import Game, IllegalActionError, Match
 from server.rules.snooker_score import COLOUR, FrameScore, remaining, snookers_required
-from server.rules.snooker_table import snookered, spot_point
+from server.rules.snooker_table import edges_clear, snookered, spot_point
 
 from .helpers import crafted, hit, off, pot
 
@@ -169,6 +170,25 @@ def test_snookered_is_no_ball_on_struck_at_both_extreme_edges():
     assert snookered(SNOOKER, game.balls, [1])
     open_table = frame({**SNOOKERED, BLUE: (1.5, MID + 0.2)})
     assert not snookered(SNOOKER, open_table.balls, [1])
+
+
+def test_snookered_asks_every_ball_on_for_both_extreme_edges():
+    # WPBSA 2.14 Snookered: `snookered` (every ball on at once) is `edges_clear` asked of
+    # each ball on, on tables with the balls scattered at random about a crowded middle.
+    rng = np.random.default_rng(14)
+    base = Game.new("snooker", ("Ana", "Ben")).balls
+    ids = base.ids.tolist()
+    found = 0
+    for _ in range(300):
+        balls = base.copy()
+        for ball in ids:
+            x = rng.uniform(0.5, SNOOKER.length - 0.5)
+            balls = balls.with_ball(ball, (x, MID + rng.normal(0.0, 0.12)))
+        on = [int(b) for b in rng.choice(ids[1:], size=int(rng.integers(1, 16)), replace=False)]
+        each = not any(edges_clear(SNOOKER, balls, b, on) for b in on)
+        assert snookered(SNOOKER, balls, on) == each
+        found += each
+    assert 10 < found < 290  # both answers were asked for
 
 
 def test_a_foul_that_leaves_the_opponent_snookered_gives_a_free_ball():
