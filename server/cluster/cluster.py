@@ -406,7 +406,8 @@ class Cluster:
         while True:
             await asyncio.sleep(self.settings.heartbeat)
             try:
-                await asyncio.wait_for(self.keep_alive(), self.beat_deadline)
+                async with asyncio.timeout(self.beat_deadline):  # (wait_for: see store.call)
+                    await self.keep_alive()
             except (RedisError, OSError, TimeoutError) as exc:
                 log.warning("cluster: heartbeat: %s", exc or "no answer within half a lease")
             except Exception:

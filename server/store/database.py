@@ -273,7 +273,10 @@ class Database:
         limit = self.read_deadline
         future = self.submit(fn, retry_for=limit, deadline=limit)
         try:
-            return await asyncio.wait_for(asyncio.wrap_future(future), limit)
+            # asyncio.timeout, not wait_for: on Python 3.11 wait_for can swallow a
+            # cancellation that meets the answer, and a cancelled task then runs on
+            async with asyncio.timeout(limit):
+                return await asyncio.wrap_future(future)
         except TimeoutError:
             raise StoreUnavailable(f"no answer within {limit:g} s") from None
         except Exception as exc:

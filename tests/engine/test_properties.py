@@ -111,8 +111,8 @@ def test_ball_ball_event_conserves_momentum_and_loses_energy(angle, v1, v2, e):
     # exact, but for a ball left slower than EPS_SPEED, which the engine stops
     assert vel.sum(axis=0) == pytest.approx(before_p, abs=2 * EPS_SPEED)
     assert float((vel**2).sum()) <= before_ke * (1 + 1e-12) + 1e-15
-    # afterwards they never approach
-    assert (vel[0] - vel[1]) @ (pos[0] - pos[1]) >= -1e-12
+    # afterwards they never approach (but for the speed of a ball the engine stopped)
+    assert (vel[0] - vel[1]) @ (pos[0] - pos[1]) >= -2 * EPS_SPEED * 2 * R
 
 
 @SETTINGS
