@@ -1,7 +1,10 @@
+import math
+
 import numpy as np
 import pytest
 
-from server.engine import Table
+from server.engine import BallSet, MotionState, Table, step
+from server.engine.physics.motion import classify
 
 
 @pytest.fixture(scope="session")
@@ -75,3 +78,27 @@ def in_play_area(table, positions: np.ndarray, tol: float = 1e-9) -> np.ndarray:
         inside &= np.linalg.norm(p - np.array(pocket.hole), axis=1) >= pocket.hole_radius - tol
         on_shelf |= inside
     return ((ok & ~past_any) | on_shelf) & clear_of_points
+
+
+def bank(table, speed, angle_deg, wz=0.0, gap=0.15, tick=1 / 120):
+    """A ball rolling into `table`'s bottom rail at `angle_deg` from its normal, `gap` from
+    it: (speed in, speed out once it rolls again, angle out from the normal in degrees)."""
+    r = table.ball_radius
+    balls = BallSet.place({0: (0.5, gap + r)})
+    a = math.radians(angle_deg)
+    vx, vy = speed * math.sin(a), -speed * math.cos(a)
+    balls.velocities[0] = (vx, vy)
+    balls.spins[0] = (-vy / r, vx / r, wz)
+    classify(balls.velocities, balls.spins, balls.states, 0, r)
+    speed_in = None
+    for k in range(2000):
+        before = float(np.linalg.norm(balls.velocities[0]))
+        events = step(table, balls, tick, k * tick)
+        if any(e.kind == "cushion" for e in events):
+            assert speed_in is None, "a second cushion before it rolled"
+            speed_in = before
+        if speed_in is not None and balls.states[0] == MotionState.ROLLING:
+            out = balls.velocities[0]
+            angle = math.degrees(math.atan2(abs(out[0]), abs(out[1])))
+            return speed_in, float(np.linalg.norm(out)), angle
+    raise AssertionError("never rolled after the rail")

@@ -14,13 +14,12 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from server.engine import BallSet, MotionState, Shot, Table, rack, simulate, step
+from server.engine import Shot, Table, rack, simulate
 from server.engine.params import DEFAULT_PARAMS, params_for
-from server.engine.physics.motion import classify
 from server.engine.rack import RED, WHITE, YELLOW
 from server.engine.simulate import settle
 
-from .conftest import in_play_area, pair_min_gap
+from .conftest import bank, in_play_area, pair_min_gap
 from .styled_tables import SHOTS, assert_energy_never_rises, placements
 
 CAROM = Table.carom()
@@ -112,32 +111,9 @@ def test_kinetic_energy_never_increases_on_the_carom_table(balls, shot):
     assert balls.on_table.all()
 
 
-def bank(speed, angle_deg, wz=0.0, gap=0.15):
-    """A ball rolling into the bottom rail at `angle_deg` from its normal, `gap` from it:
-    (speed in, speed out once it rolls again, angle out from the normal in degrees)."""
-    balls = BallSet.place({0: (0.5, gap + R)})
-    a = math.radians(angle_deg)
-    vx, vy = speed * math.sin(a), -speed * math.cos(a)
-    balls.velocities[0] = (vx, vy)
-    balls.spins[0] = (-vy / R, vx / R, wz)
-    classify(balls.velocities, balls.spins, balls.states, 0, R)
-    speed_in = None
-    for k in range(2000):
-        before = float(np.linalg.norm(balls.velocities[0]))
-        events = step(CAROM, balls, TICK, k * TICK)
-        if any(e.kind == "cushion" for e in events):
-            assert speed_in is None, "a second cushion before it rolled"
-            speed_in = before
-        if speed_in is not None and balls.states[0] == MotionState.ROLLING:
-            out = balls.velocities[0]
-            angle = math.degrees(math.atan2(abs(out[0]), abs(out[1])))
-            return speed_in, float(np.linalg.norm(out)), angle
-    raise AssertionError("never rolled after the rail")
-
-
 @pytest.mark.parametrize("speed", [0.5, 1.0, 2.0])
 def test_a_rolling_ball_straight_into_a_carom_rail_comes_back_at_pooltools_speed(speed):
-    speed_in, speed_out, angle = bank(speed, 0)
+    speed_in, speed_out, angle = bank(CAROM, speed, 0)
     assert angle == pytest.approx(0.0, abs=1e-6)
     assert speed_out / speed_in == pytest.approx(POOLTOOL_STRAIGHT_RATIO, abs=0.01)
 
@@ -145,14 +121,14 @@ def test_a_rolling_ball_straight_into_a_carom_rail_comes_back_at_pooltools_speed
 @pytest.mark.parametrize("speed", [0.8, 1.5])
 @pytest.mark.parametrize("angle_in", [15, 30, 45, 60])
 def test_carom_banks_leave_at_pooltools_angles(speed, angle_in):
-    _, _, angle_out = bank(speed, angle_in)
+    _, _, angle_out = bank(CAROM, speed, angle_in)
     assert angle_out == pytest.approx(POOLTOOL_BANK_OUT[angle_in], abs=0.5)
 
 
 def test_running_and_check_english_off_a_carom_rail_as_pooltool():
     v = 1.5
     # Our bottom rail: a ball running +x along it has running english with wz < 0.
-    speed_in, running, _ = bank(v, 45, wz=-1.25 * v / R)
-    _, check, _ = bank(v, 45, wz=+1.25 * v / R)
+    speed_in, running, _ = bank(CAROM, v, 45, wz=-1.25 * v / R)
+    _, check, _ = bank(CAROM, v, 45, wz=+1.25 * v / R)
     assert running / speed_in == pytest.approx(POOLTOOL_RUNNING_RATIO, abs=0.01)
     assert check / speed_in == pytest.approx(POOLTOOL_CHECK_RATIO, abs=0.01)

@@ -10,14 +10,13 @@ SLIDING_ROLLING event's final state (the ball rolls again), the angle from the r
 normal. Ours are measured the same way on our 9 ft table.
 """
 
-import math
-
 import numpy as np
 import pytest
 
-from server.engine import DEFAULT_PARAMS, BallSet, MotionState, step
-from server.engine.physics.motion import classify
+from server.engine import DEFAULT_PARAMS, MotionState
 from server.engine.physics.resolve import cushion_restitution, rebound
+
+from .conftest import bank
 
 R = 0.028575
 TICK = 1 / 120
@@ -32,29 +31,6 @@ POOLTOOL_BANK_OUT = {15: 18.93, 30: 39.46, 45: 59.53, 60: 75.08}
 # set 0.15 m before the rail: speed ratio out / in.
 POOLTOOL_RUNNING_RATIO = 0.8642
 POOLTOOL_CHECK_RATIO = 0.5564
-
-
-def bank(table, speed, angle_deg, wz=0.0, gap=0.15):
-    """A ball rolling into the bottom rail at `angle_deg` from its normal, `gap` from it:
-    (speed in, speed out once it rolls again, angle out from the normal in degrees)."""
-    balls = BallSet.place({0: (0.5, gap + R)})
-    a = math.radians(angle_deg)
-    vx, vy = speed * math.sin(a), -speed * math.cos(a)
-    balls.velocities[0] = (vx, vy)
-    balls.spins[0] = (-vy / R, vx / R, wz)
-    classify(balls.velocities, balls.spins, balls.states, 0, R)
-    speed_in = None
-    for k in range(2000):
-        before = float(np.linalg.norm(balls.velocities[0]))
-        events = step(table, balls, TICK, k * TICK)
-        if any(e.kind == "cushion" for e in events):
-            assert speed_in is None, "a second cushion before it rolled"
-            speed_in = before
-        if speed_in is not None and balls.states[0] == MotionState.ROLLING:
-            out = balls.velocities[0]
-            angle = math.degrees(math.atan2(abs(out[0]), abs(out[1])))
-            return speed_in, float(np.linalg.norm(out)), angle
-    raise AssertionError("never rolled after the rail")
 
 
 @pytest.mark.parametrize("speed", [0.5, 1.0, 2.0])
