@@ -25,7 +25,7 @@ from server.rules.strategy import GameRules
 from .aiming import clamp_shot, perturb
 from .carom import CaromSearch, carom_level
 from .geometry import best_chance, path_clear, pockets_of
-from .levels import BY_NAME, LEVELS, Level
+from .levels import BY_NAME, LEVELS, Level, for_kind
 from .search import Candidate, Search
 
 HAND_DISTANCES = (0.18, 0.35, 0.6)  # m from the object ball to the cue ball
@@ -219,7 +219,8 @@ class Bot:
         pos = game.position()
         if not pos.breaking and still_racked(game.rules, game.balls, game.table):
             pos = replace(pos, breaking=True)  # a practice rack: the break is the shot
-        return Search(game.table, game.rules, pos, seat, self.level, noise, confirm)
+        level = for_kind(self.level, game.rules.kind)
+        return Search(game.table, game.rules, pos, seat, level, noise, confirm)
 
     def _turn(self, cand: Candidate, place: tuple[float, float] | None, push: bool = False) -> Turn:
         kind, target, pocket = cand.kind, cand.target, cand.pocket

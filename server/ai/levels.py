@@ -38,7 +38,10 @@ class Level:
     middle of the mouth; jumps: when a legal ball's straight path is blocked, it also
     tries jumping the cue ball over the blocker (`search.JUMPS`) among its escapes;
     masse: when it is blocked (at any distance), it also tries curving the cue ball
-    round the blocker with a raised cue and side spin (`search.CURVES`).
+    round the blocker with a raised cue and side spin (`search.CURVES`); fine_pots: every
+    pot gets the finer strokes (`search.FINE_SPEED_FACTORS`), not only when few are on;
+    deep_next: the next-shot search always tries the late grid (`search.LATE_SPEED_FACTORS`).
+    The last two are set by `for_kind` (snooker), not by the table below.
     """
 
     name: str
@@ -62,6 +65,8 @@ class Level:
     windows: bool = False
     jumps: bool = False
     masse: bool = False
+    fine_pots: bool = False
+    deep_next: bool = False
 
     @property
     def chance_model(self) -> ChanceModel:
@@ -94,3 +99,14 @@ LEVEL_TABLE: tuple[Level, ...] = (
 # fmt: on
 LEVELS: tuple[str, ...] = tuple(level.name for level in LEVEL_TABLE)
 BY_NAME: dict[str, Level] = {level.name: level for level in LEVEL_TABLE}
+
+
+def for_kind(level: Level, kind: str) -> Level:
+    """`level` as it plays the game `kind`. A snooker break runs on for up to 36 pots, not a
+    pool rack's 8 or 9, so the level that searches late-rack position (`late_strokes`)
+    searches every pot's position so: the finer strokes on each pot and the late grid on
+    the next shot. In the pro's self-play this lifted the mean highest break per frame from
+    46 to 61 (docs/ai.md, "Snooker"); a pool plan is unchanged."""
+    if kind == "snooker" and level.late_strokes:
+        return replace(level, fine_pots=True, deep_next=True)
+    return level

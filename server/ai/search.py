@@ -448,7 +448,9 @@ class Search:
         sigma = self.plan_sigma() if model.floor else max(self.plan_sigma(), MIN_AIM_SIGMA)
         options = pot_options(self.table, final, self.targets(nxt), sigma, model=model)
         speeds, tips = SPEED_FACTORS[:LOOK_SPEEDS], TIPS[:LOOK_TIPS]
-        late = self.level.late_strokes and len(options) <= FEW_POTS and self._late(nxt)
+        late = self.level.late_strokes and (
+            self.level.deep_next or (len(options) <= FEW_POTS and self._late(nxt))
+        )
         if late and self.limit - self.sims >= LATE_LOOK_SIMS:
             speeds, tips = LATE_SPEED_FACTORS, TIPS
         options = options[:LOOK_PAIRS]
@@ -483,7 +485,7 @@ class Search:
     def pot_candidates(self, balls: BallSet, pairs: int) -> list[Candidate]:
         options = pot_options(self.table, balls, self.targets(self.pos), self.plan_sigma())
         needs_call = self.rules.requires_call(self.pos)
-        fine = self.level.lookahead > 0 and len(options) <= FEW_POTS
+        fine = self.level.lookahead > 0 and (self.level.fine_pots or len(options) <= FEW_POTS)
         out = []
         for option in options[:pairs]:
             out.extend(self._variants(option, needs_call, fine))
