@@ -80,7 +80,7 @@ def _nine_ball_order(rng: np.random.Generator) -> list[int]:
 
 
 def _snooker_placement(table: Table, rng: np.random.Generator) -> dict[int, tuple[float, float]]:
-    """WPBSA Section 3 Rule 2 (Positioning of Balls): the reds in a tight triangle, the apex
+    """WPBSA Section 3 Rule 2 (Position of Balls): the reds in a tight triangle, the apex
     ball as near the pink as possible without touching it, its base parallel to and nearest
     the top cushion; the colours on their spots. The cue ball starts in the D, halfway
     between the brown and green spots (the player places it: "in-hand")."""

@@ -61,8 +61,9 @@ POOL = TableStyle(
 )
 STYLES: dict[str, TableStyle] = {style.name: style for style in (POOL, SNOOKER, CAROM)}
 
-# Snooker (WPBSA Section 1 Equipment; `styles.py`): playing area, ball radius, and the
-# jaw-to-jaw mouths our sharp points need to accept what pooltool's rounded snooker jaws do.
+# Snooker (WPBSA 1.1 The Standard Table, 1.2 Balls; `styles.py`): playing area, ball
+# radius, and the jaw-to-jaw mouths our sharp points need to accept what pooltool's
+# rounded snooker jaws do.
 SNOOKER_SIZE = (3.569, 1.778)
 SNOOKER_BALL_RADIUS = 0.02625
 SNOOKER_CORNER_MOUTH = 0.094

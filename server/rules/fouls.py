@@ -66,7 +66,8 @@ def shot_clock(name: str) -> Foul:
     return Foul("shot_clock", f"{name} ran out of time to shoot.")
 
 
-# Snooker (WPBSA Section 3, 10 Fouls; 12 Foul and a Miss).
+# Snooker (WPBSA 2.15 Infringements, Fouls and Penalties; 3.11 Penalty Values; 3.14 Foul
+# and a Miss).
 def no_ball_hit(name: str) -> Foul:
     return Foul("no_contact", f"{name}'s cue ball did not touch any ball.")
 
@@ -87,4 +88,4 @@ def in_off(name: str) -> Foul:
 
 
 def miss(name: str) -> Foul:
-    return Foul("miss", f"{name} did not hit the ball on and was not snookered: a miss.")
+    return Foul("miss", f"{name} did not hit the ball on, open to a straight stroke: a miss.")

@@ -249,7 +249,7 @@ class Game:
         self.called_pocket = pocket
 
     def nominate(self, seat: int, ball: int) -> None:
-        """Snooker: nominate the colour on, or the free ball (WPBSA 2.10 Nominated Ball)."""
+        """Snooker: nominate the colour on, or the free ball (WPBSA 2.12 Nominated Ball)."""
         self._check_free(seat)
         choices = self.rules.nominations(self.position())
         if not choices:
@@ -313,8 +313,9 @@ class Game:
             raise AssertionError(f"unhandled option {option!r} for {pending}")
 
     def _after_snooker_foul(self, seat: int, option: str, bih: str | None) -> None:
-        """Snooker: play on, with a free ball, or have the offender play again, from here
-        or with the balls replaced (WPBSA 3.9, 3.10, 3.12)."""
+        """Snooker: play on, with a free ball (WPBSA 3.12), or have the offender play again
+        (3.13), from here or, after a miss, with the balls replaced (3.14); misses count
+        toward three only from the balls replaced, so playing again from here ends the run."""
         name, other = self.players[seat], 1 - seat
         score = self.score
         assert score is not None
@@ -330,6 +331,10 @@ class Game:
                 f"{name} takes a free ball." if option == "free_ball" else f"{name} plays."
             )
         else:
+            if option == "play_again":
+                misses = list(score.misses)
+                misses[other] = 0
+                self.score = replace(score, misses=tuple(misses))
             self.turn, self.ball_in_hand = other, bih
             how = "from where the balls were" if option == "replace" else "again"
             self.notice = f"{name} has {self.players[other]} play {how}."

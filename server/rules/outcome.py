@@ -13,7 +13,7 @@ from server.codec import from_data, to_dict
 
 ANYWHERE = "anywhere"
 BEHIND_HEAD_STRING = "behind_head_string"
-IN_D = "in_d"  # snooker: on or within the lines of the D (WPBSA 2.7 In-hand)
+IN_D = "in_d"  # snooker: on or within the lines of the D (WPBSA 2.9 In-hand, 3.5)
 
 
 @dataclass(frozen=True)

@@ -2,8 +2,9 @@
 on, a nominated ball, a free ball, misses in a row and the re-spotted black.
 
 WPBSA "Official Rules of the Games of Snooker and English Billiards" (the rulebook the
-docstrings cite as "WPBSA"), Section 2 (Definitions) 9 Ball On and 10 Nominated Ball,
-Section 3 (The Game) 3 Mode of Play.
+docstrings cite as "WPBSA s.r", Section s, Rule r; the edition revised November 2019):
+2.11 Ball On, 2.12 Nominated Ball, 2.13 Free Ball, 3.1 Description (the balls' values),
+3.3 Mode of Play.
 """
 
 from __future__ import annotations
@@ -29,9 +30,10 @@ class FrameScore:
     """points: each seat's points in the frame. current_break: the striker's points in
     this visit. on: RED, COLOUR, or a colour's name once the reds are gone (the lowest
     colour on the table). nominated: the ball the striker nominated (a colour when on
-    COLOUR; the free ball). free_ball: the striker plays a free ball (WPBSA 3.9).
-    misses: fouls-and-a-miss in a row per seat (WPBSA 3.12). respotted_black: the frame
-    was tied and the black re-spotted (WPBSA 3.3). highest_break: per seat.
+    COLOUR; the free ball). free_ball: the striker plays a free ball (WPBSA 3.12).
+    misses: per seat, the misses in a row that count toward three (WPBSA 3.14).
+    respotted_black: the frame was tied and the black re-spotted (WPBSA 3.4).
+    highest_break: per seat.
     """
 
     points: tuple[int, ...] = (0, 0)
@@ -66,7 +68,7 @@ def on_after_turn(on_table: Sequence[int]) -> str:
 
 
 def balls_on(score: FrameScore, on_table: Sequence[int]) -> list[int]:
-    """The balls the striker may hit first (WPBSA Section 2, 9 Ball On): any red; any
+    """The balls the striker may hit first (WPBSA 2.11 Ball On): any red; any
     colour (only the nominated one once nominated); the lowest colour; and a free ball."""
     if score.on == RED:
         on = reds_left(on_table)
@@ -80,7 +82,7 @@ def balls_on(score: FrameScore, on_table: Sequence[int]) -> list[int]:
 
 
 def value_on(score: FrameScore) -> int:
-    """The value of the ball on (a free ball is worth the ball on it stands for)."""
+    """The value of the ball on (a free ball is worth the ball on it stands for, 2.13)."""
     if score.on == RED:
         return 1
     if score.on == COLOUR:

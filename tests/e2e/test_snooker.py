@@ -1,7 +1,7 @@
 """A newcomer plays snooker against the computer through the page, in real Chromium: the
 lobby's computer card, the table drawn with the D, the break-off from the D, the
-computer's visit, the frame's scoreboard, then the frame conceded (WPBSA Section 4: a
-frame may be conceded) so the match ends.
+computer's visit, the frame's scoreboard, then the frame conceded (WPBSA 2.1 Frame: a
+player may concede during their turn) so the match ends.
 
 Everything is driven through the page (lobby fields, the mouse on the canvas, buttons);
 `window.__pool` is only read, to wait and to find where things are drawn.

@@ -34,7 +34,7 @@ POOLTOOL_SIDE_WINDOW = {90: (44, 44), 60: (33, 42)}  # at 1.5 m/s, mm each side
 
 
 def test_the_wpbsa_playing_area_balls_and_markings():
-    # WPBSA Section 1 (Equipment): 3569 x 1778 mm, 52.5 mm balls, baulk line 737 mm,
+    # WPBSA 1.1 The Standard Table, 1.2 Balls: 3569 x 1778 mm, 52.5 mm balls, baulk line 737 mm,
     # D radius 292 mm, black spot 324 mm from the top cushion.
     assert (SNOOKER.length, SNOOKER.width) == (3.569, 1.778)
     assert SNOOKER.ball_radius == 0.02625
@@ -71,7 +71,7 @@ def test_the_rack_is_22_balls_in_place_without_overlap():
         assert balls.position_of(ball) == SNOOKER.spots[name]
     reds = np.array([balls.position_of(b) for b in REDS])
     pink_x = SNOOKER.spots["pink"][0]
-    # WPBSA 3.2: the apex red as near the pink as possible without touching it.
+    # WPBSA 3.2 Position of Balls: the apex red as near the pink as possible without touching it.
     assert reds[:, 0].min() - pink_x == pytest.approx(2 * R, abs=1e-4)
     assert SNOOKER.in_d(*balls.position_of(0))
     assert in_play_area(SNOOKER, balls.positions).all()

@@ -1,7 +1,8 @@
-"""Snooker's rules, each test naming the WPBSA section it checks ("Official Rules of the
-Games of Snooker and English Billiards": Section 2 Definitions, Section 3 The Game,
-Section 4 The Players). Shots are crafted results (`helpers.crafted`): the referee only
-reads which ball was hit first and which dropped."""
+"""Snooker's rules, each test naming the WPBSA rule it checks as "WPBSA s.r" (Section s,
+Rule r of the "Official Rules of the Games of Snooker and English Billiards", the edition
+revised November 2019: Section 2 Definitions, Section 3 The Game, Section 4 The Players).
+Shots are crafted results (`helpers.crafted`): the referee only reads which ball was hit
+first and which dropped."""
 
 from dataclasses import replace
 
@@ -11,7 +12,13 @@ import pytest
 from server.engine import MotionState, Table
 from server.rules import Game, IllegalActionError, Match
 from server.rules.snooker_score import COLOUR, FrameScore, remaining, snookers_required
-from server.rules.snooker_table import edges_clear, snookered, spot_point
+from server.rules.snooker_table import (
+    edges_clear,
+    open_path,
+    respot_colours,
+    snookered,
+    spot_point,
+)
 
 from .helpers import crafted, hit, off, pot
 
@@ -51,7 +58,7 @@ RED_OPEN = {1: (2.0, 0.5), 2: (2.2, 1.3)}
 
 
 def test_a_new_frame_is_the_wpbsa_table_and_the_cue_ball_in_hand_in_the_d():
-    # WPBSA 3.2 Positioning of Balls, 3.4 Play from In-hand, 2.7 In-hand.
+    # WPBSA 3.2 Position of Balls, 3.5 Playing from In-hand, 2.9 In-hand.
     game = Game.new("snooker", ("Ana", "Ben"))
     assert game.table == Table.snooker() and game.table.ball_radius == 0.02625
     assert game.points == (0, 0)
@@ -60,11 +67,11 @@ def test_a_new_frame_is_the_wpbsa_table_and_the_cue_ball_in_hand_in_the_d():
     assert not game.can_place_cue(0.8, MID)  # beyond the baulk line
     assert not game.can_place_cue(0.6, MID + 0.3)  # outside the D
     game.place_cue(0, 0.7, MID + 0.2)
-    assert game.legal_targets() == list(range(1, 16))  # 2.9 Ball On: any red
+    assert game.legal_targets() == list(range(1, 16))  # 2.11 Ball On: any red
 
 
 def test_a_red_then_a_colour_score_and_the_colour_is_respotted():
-    # WPBSA 3.3 Mode of Play (a red, then a colour while reds remain) and 3.6 Spotting
+    # WPBSA 3.3 Mode of Play (a red, then a colour while reds remain) and 3.7 Spotting
     # Colours (a colour potted while reds remain goes back on its own spot).
     game = frame({**CUE_IN_BAULK, **RED_OPEN, **ALL_COLOURS})
     out = game.apply(0, crafted(game.balls, hit(0, 1), pot(1, 2)))
@@ -79,14 +86,14 @@ def test_a_red_then_a_colour_score_and_the_colour_is_respotted():
 
 
 def test_without_a_nomination_the_colour_hit_first_is_the_nominated_one():
-    # WPBSA 2.10 Nominated Ball: the server takes the obvious nomination.
+    # WPBSA 2.12 Nominated Ball: the server takes the obvious nomination.
     game = frame({**CUE_IN_BAULK, **RED_OPEN, **ALL_COLOURS}, on=COLOUR)
     game.apply(0, crafted(game.balls, hit(0, BLUE), pot(BLUE, 1)))
     assert game.points == (5, 0)
 
 
 def test_only_a_colour_can_be_nominated_and_only_on_a_colour():
-    # WPBSA 2.10 Nominated Ball.
+    # WPBSA 2.12 Nominated Ball.
     game = frame({**CUE_IN_BAULK, **RED_OPEN, **ALL_COLOURS})
     with pytest.raises(IllegalActionError):
         game.nominate(0, BLACK)  # on a red: nothing to nominate
@@ -111,7 +118,7 @@ def test_the_colours_are_taken_in_order_once_the_reds_are_gone():
 
 
 def test_a_colour_goes_to_the_highest_free_spot_when_its_own_is_taken():
-    # WPBSA 3.6 Spotting Colours: own spot, else the highest value spot available, else
+    # WPBSA 3.7 Spotting Colours: own spot, else the highest value spot available, else
     # as near its own spot as possible towards the top cushion.
     game = frame({0: SNOOKER.spots["pink"], **spots(BLUE, BROWN, GREEN, YELLOW)})
     balls = game.balls
@@ -125,21 +132,33 @@ def test_a_colour_goes_to_the_highest_free_spot_when_its_own_is_taken():
     assert x - SNOOKER.spots["pink"][0] == pytest.approx(2 * SNOOKER.ball_radius, abs=2e-3)
 
 
+def test_colours_with_their_own_spot_free_go_there_before_the_others_are_spotted():
+    # WPBSA 3.7 Spotting Colours: a colour goes on its own spot when it is free; the
+    # higher value takes precedence only among colours whose own spots are occupied.
+    balls = frame({0: SNOOKER.spots["black"], **spots(YELLOW, GREEN, BROWN)}).balls
+    back = respot_colours(SNOOKER, balls, (BLACK, PINK))
+    assert back.position_of(PINK) == SNOOKER.spots["pink"]
+    assert back.position_of(BLACK) == SNOOKER.spots["blue"]  # the highest spot left free
+
+
 @pytest.mark.parametrize(
     ("events", "score", "value", "code"),
     [
-        ((), {}, 4, "no_contact"),  # 3.10 no ball hit: 4
+        ((), {}, 4, "no_contact"),  # no ball hit: the ball on's value, at least 4
         ((hit(0, BLACK),), {}, 7, "wrong_ball_first"),  # a ball not on first: its value
         ((hit(0, 1), pot(PINK, 5)), {}, 6, "potted_not_on"),  # a ball not on potted
         ((hit(0, 1), pot(0, 0)), {}, 4, "in_off"),  # the cue ball potted
         ((hit(0, BLACK),), {"on": COLOUR, "nominated": BLUE}, 7, "wrong_ball_first"),
         ((hit(0, YELLOW),), {"on": COLOUR, "nominated": PINK}, 6, "wrong_ball_first"),
+        ((), {"on": COLOUR}, 7, "no_contact"),  # after a red, no colour nominated: 7
+        ((hit(0, 1),), {"on": COLOUR}, 7, "wrong_ball_first"),  # the same, a red first
     ],
 )
 def test_fouls_cost_the_value_of_the_ball_on_or_of_the_ball_involved_at_least_4(
     events, score, value, code
 ):
-    # WPBSA 3.10 Fouls, 3.11 Penalties.
+    # WPBSA 2.15 Infringements, Fouls and Penalties; 3.11 Penalty Values (seven points
+    # for a foul after a red before a colour is nominated).
     game = frame({**CUE_IN_BAULK, **RED_OPEN, **ALL_COLOURS}, **score)
     out = game.apply(0, crafted(game.balls, *events))
     assert code in [f.code for f in out.fouls]
@@ -151,8 +170,8 @@ def test_fouls_cost_the_value_of_the_ball_on_or_of_the_ball_involved_at_least_4(
 
 
 def test_after_a_foul_the_next_player_may_have_the_offender_play_again():
-    # WPBSA 3.10 Fouls: "the next player ... may play or request the offender to play
-    # again".
+    # WPBSA 3.13 Play Again: after a foul the next player may play, or have the offender
+    # play again.
     game = frame({**CUE_IN_BAULK, **RED_OPEN, **ALL_COLOURS})
     game.apply(0, crafted(game.balls, hit(0, BLACK)))
     assert game.decision is not None
@@ -165,7 +184,7 @@ SNOOKERED = {0: (1.0, MID), 1: (2.0, MID), BLUE: (1.5, MID), BLACK: SNOOKER.spot
 
 
 def test_snookered_is_no_ball_on_struck_at_both_extreme_edges():
-    # WPBSA 2.14 Snookered.
+    # WPBSA 2.17 Snookered.
     game = frame(SNOOKERED)
     assert snookered(SNOOKER, game.balls, [1])
     open_table = frame({**SNOOKERED, BLUE: (1.5, MID + 0.2)})
@@ -173,7 +192,7 @@ def test_snookered_is_no_ball_on_struck_at_both_extreme_edges():
 
 
 def test_snookered_asks_every_ball_on_for_both_extreme_edges():
-    # WPBSA 2.14 Snookered: `snookered` (every ball on at once) is `edges_clear` asked of
+    # WPBSA 2.17 Snookered: `snookered` (every ball on at once) is `edges_clear` asked of
     # each ball on, on tables with the balls scattered at random about a crowded middle.
     rng = np.random.default_rng(14)
     base = Game.new("snooker", ("Ana", "Ben")).balls
@@ -192,8 +211,8 @@ def test_snookered_asks_every_ball_on_for_both_extreme_edges():
 
 
 def test_a_foul_that_leaves_the_opponent_snookered_gives_a_free_ball():
-    # WPBSA 3.9 Free Ball: the nominated ball is a red; potted, it scores as a red and is
-    # re-spotted.
+    # WPBSA 3.12 Snookered After a Foul, 2.13 Free Ball: the nominated ball is a red;
+    # potted, it scores as a red and is re-spotted.
     game = frame(SNOOKERED)
     out = game.apply(0, crafted(game.balls))  # no ball hit; Ana was snookered: no miss
     assert "miss" not in [f.code for f in out.fouls]
@@ -210,8 +229,23 @@ def test_a_foul_that_leaves_the_opponent_snookered_gives_a_free_ball():
     assert game.score.on == COLOUR and not game.score.free_ball
 
 
+def test_a_free_ball_is_any_ball_but_the_ball_on_and_a_foul_on_it_costs_the_ball_on():
+    # WPBSA 2.13 Free Ball (a ball other than the ball on, nominated as the ball on),
+    # 3.12 Snookered After a Foul (it acquires the value of the ball on), 3.11 Penalty
+    # Values: hitting the free ball first is hitting the ball on, so going in-off after
+    # it costs the ball on's value (4), not the free ball's.
+    game = frame(SNOOKERED)
+    game.apply(0, crafted(game.balls))  # Ana fouls: 4 to Ben, who is snookered
+    game.decide(1, "free_ball")
+    assert game.public_state()["nominations"] == [BLUE, BLACK]  # not the red on
+    game.nominate(1, BLACK)
+    out = game.apply(1, crafted(game.balls, hit(0, BLACK), pot(0, 2)))
+    assert [f.code for f in out.fouls] == ["in_off"]
+    assert game.points == (4, 4)
+
+
 def test_a_foul_without_hitting_the_ball_on_when_not_snookered_is_a_miss():
-    # WPBSA 3.12 Foul and a Miss: the balls may be replaced and the offender play again.
+    # WPBSA 3.14 Foul and a Miss: the balls may be replaced and the offender play again.
     game = frame({**CUE_IN_BAULK, **RED_OPEN, **ALL_COLOURS})
     before = game.balls.copy()
     moved = crafted(game.balls, hit(0, BLACK))
@@ -225,8 +259,8 @@ def test_a_foul_without_hitting_the_ball_on_when_not_snookered_is_a_miss():
 
 
 def test_no_miss_when_only_the_black_is_left_or_snookers_are_needed():
-    # WPBSA 3.12: not called when only the black remains, nor when the striker needed
-    # snookers before the stroke.
+    # WPBSA 3.14(a)(i): not called when the striker needed penalty points before the
+    # stroke; with only the black left the foul ends the frame (3.4).
     last = frame({**CUE_IN_BAULK, **spots(BLACK)}, on="black", points=(40, 40))
     out = last.apply(0, crafted(last.balls))
     assert "miss" not in [f.code for f in out.fouls]
@@ -235,8 +269,72 @@ def test_no_miss_when_only_the_black_is_left_or_snookers_are_needed():
     assert "miss" not in [f.code for f in out.fouls]
 
 
+PARTLY_HIDDEN = {**SNOOKERED, BLUE: (1.5, MID + 2 * SNOOKER.ball_radius)}
+
+
+def test_a_miss_is_called_when_any_part_of_a_ball_on_is_open_but_counted_only_when_all_is():
+    # WPBSA 3.14 Foul and a Miss: failing to hit a ball on with a clear path in a straight
+    # line to any part of it is a miss; the count toward three asks for full-ball contact
+    # (2.17: a ball on not struck at both extreme edges leaves the striker snookered).
+    game = frame(PARTLY_HIDDEN)  # the blue hides one edge of the red, not the other
+    assert snookered(SNOOKER, game.balls, [1]) and open_path(SNOOKER, game.balls, [1])
+    out = game.apply(0, crafted(game.balls, hit(0, BLUE)))
+    assert "miss" in [f.code for f in out.fouls]
+    assert game.decision is not None and "replace" in game.decision.options
+    assert game.score is not None and game.score.misses == (0, 0)
+    hidden = frame(SNOOKERED)  # the red wholly hidden: the server judges no miss
+    assert not open_path(SNOOKER, hidden.balls, [1])
+    out = hidden.apply(0, crafted(hidden.balls, hit(0, BLUE)))
+    assert "miss" not in [f.code for f in out.fouls]
+    full = frame({**CUE_IN_BAULK, **RED_OPEN, **ALL_COLOURS})
+    full.apply(0, crafted(full.balls, hit(0, BLACK)))
+    assert full.score is not None and full.score.misses == (1, 0)
+
+
+@pytest.mark.parametrize(
+    ("points", "miss"),
+    [
+        ((0, 0), True),
+        ((60, 0), False),  # the opponent needs penalty points before the stroke: (a)(i)
+        ((0, 7), False),  # the striker needs them once the 7 are paid: (a)(i), after
+        ((0, 13), False),  # the 13 on the table equal the difference: (a)(ii)
+    ],
+)
+def test_no_miss_when_either_player_needs_penalty_points_before_or_after_the_stroke(points, miss):
+    # WPBSA 3.14(a)(i), (ii): no miss when either player needed penalty points before or
+    # after the stroke, or the points on the table equal the difference (the server
+    # takes such a miss as not intended).
+    game = frame({**CUE_IN_BAULK, **spots(PINK, BLACK)}, on="pink", points=points)
+    out = game.apply(0, crafted(game.balls, hit(0, BLACK)))
+    assert ("miss" in [f.code for f in out.fouls]) == miss
+
+
+def test_a_failure_again_from_the_balls_replaced_is_a_miss_whatever_the_scores():
+    # WPBSA 3.14: a further failure from the same position is a miss regardless of the
+    # difference in scores, and the offender is warned that a third gives the frame away.
+    game = frame({**CUE_IN_BAULK, **spots(PINK, BLACK)}, on="pink")
+    game.apply(0, crafted(game.balls, hit(0, BLACK)))
+    game.decide(1, "replace")
+    out = game.apply(0, crafted(game.balls, hit(0, BLACK)))  # Ana 14 behind, 13 left
+    assert "miss" in [f.code for f in out.fouls]
+    assert game.score is not None and game.score.misses == (2, 0)
+    assert "a third miss from the balls replaced gives Ben the frame" in out.message
+
+
+def test_playing_again_from_where_the_balls_lie_starts_the_count_of_misses_again():
+    # WPBSA 3.14: the failures counted toward three are from the same position (the balls
+    # replaced); 3.13 Play Again from the position left starts afresh.
+    game = frame({**CUE_IN_BAULK, **RED_OPEN, **ALL_COLOURS})
+    game.apply(0, crafted(game.balls, hit(0, BLACK)))
+    game.decide(1, "play_again")
+    assert game.score is not None and game.score.misses == (0, 0)
+    game.apply(0, crafted(game.balls, hit(0, BLACK)))
+    assert game.score.misses == (1, 0) and not game.over
+
+
 def test_three_misses_in_a_row_lose_the_frame():
-    # WPBSA 3.12 Foul and a Miss: the third miss after a warning loses the frame.
+    # WPBSA 3.14 Foul and a Miss: the third failure from the balls replaced, after a
+    # warning, loses the frame.
     game = frame({**CUE_IN_BAULK, **RED_OPEN, **ALL_COLOURS})
     for k in range(3):
         out = game.apply(0, crafted(game.balls, hit(0, BLACK)))
@@ -245,8 +343,8 @@ def test_three_misses_in_a_row_lose_the_frame():
     assert out.frame_over and game.winner == 1
 
 
-def test_misses_count_only_while_the_offender_is_made_to_play_again():
-    # WPBSA 3.12: the run of misses ends when the next player plays a stroke.
+def test_misses_count_only_while_the_offender_plays_again_from_the_balls_replaced():
+    # WPBSA 3.14: the run of misses ends when the next player plays a stroke.
     game = frame({**CUE_IN_BAULK, **RED_OPEN, **ALL_COLOURS})
     game.apply(0, crafted(game.balls, hit(0, BLACK)))
     game.decide(1, "replace")
@@ -258,8 +356,9 @@ def test_misses_count_only_while_the_offender_is_made_to_play_again():
 
 
 def test_the_frame_ends_with_the_black_and_a_tie_respots_it():
-    # WPBSA 3.3 Mode of Play: the frame ends when the black is potted as the last ball;
-    # with the scores equal the black is re-spotted, the next score or foul ends it.
+    # WPBSA 3.4 End of Frame, Game or Match: the frame ends when the black is potted as
+    # the last ball; with the scores equal the black is re-spotted, the next score or
+    # foul ends it.
     won = frame({**CUE_IN_BAULK, **spots(BLACK)}, on="black", points=(50, 40))
     out = won.apply(0, crafted(won.balls, hit(0, BLACK), pot(BLACK, 3)))
     assert out.frame_over and won.winner == 0 and won.points == (57, 40)
@@ -277,14 +376,15 @@ def test_the_frame_ends_with_the_black_and_a_tie_respots_it():
 
 
 def test_a_player_may_concede_the_frame():
-    # WPBSA Section 4, The Players: a frame conceded is lost.
+    # WPBSA 2.1 Frame (a): a frame ends by concession by a player during their turn.
     game = Game.new("snooker", ("Ana", "Ben"))
     out = game.resign(0, "Ana conceded the frame.")
     assert out.frame_over and game.winner == 1
 
 
 def test_points_remaining_and_snookers_required():
-    # WPBSA 3.3: 8 a red (with the black after it) and the colours' 27.
+    # WPBSA 3.1 Description (the values), 3.3 Mode of Play: 8 a red (with the black
+    # after it) and the colours' 27.
     full = FrameScore.start(2)
     on = [0, *range(1, 22)]
     assert remaining(full, on) == 147
@@ -298,7 +398,8 @@ def test_points_remaining_and_snookers_required():
 
 
 def test_a_match_is_best_of_n_frames():
-    # WPBSA Section 2, 3 Match: an agreed number of frames; best of 3 is first to 2.
+    # WPBSA 2.2 Game: an agreed number of frames (the WPBSA's "match" is a number of
+    # games); 3.1(g): the winner has the required number of frames; best of 3 is first to 2.
     match = Match("snooker", ("Ana", "Ben"), race_to=2)
     assert match.game.kind == "snooker" and match.game.table.style == "snooker"
     match.game.resign(1, "conceded")
@@ -315,9 +416,9 @@ def test_a_snooker_frame_round_trips_through_its_stored_form():
 
 
 def test_a_ball_forced_off_the_table_is_a_foul_colours_come_back_reds_stay_off():
-    # WPBSA 3.10 Fouls (forcing a ball off the table), 3.11 Penalties (the value of the
-    # ball forced off, at least 4), 3.6 Spotting Colours (a colour forced off the table is
-    # re-spotted; a red is not).
+    # WPBSA 2.14 Forced Off the Table, 3.11 Penalty Values (the value of the ball forced
+    # off, at least 4), 3.7 Spotting Colours (a colour forced off the table is re-spotted;
+    # a red is not).
     game = frame({**CUE_IN_BAULK, **RED_OPEN, **ALL_COLOURS})
     out = game.apply(0, crafted(game.balls, hit(0, 1), off(1, 2), off(PINK, 3)))
     assert [f.code for f in out.fouls] == ["ball_off_table"]
@@ -328,7 +429,7 @@ def test_a_ball_forced_off_the_table_is_a_foul_colours_come_back_reds_stay_off()
 
 
 def test_the_cue_ball_forced_off_the_table_is_played_from_in_hand():
-    # WPBSA 3.10 Fouls (the cue ball forced off the table), 3.4 Play from In-hand.
+    # WPBSA 2.14 Forced Off the Table, 2.9 In-hand, 3.5 Playing from In-hand.
     game = frame({**CUE_IN_BAULK, **RED_OPEN, **ALL_COLOURS})
     out = game.apply(0, crafted(game.balls, hit(0, 1), off(0, 1)))
     assert [f.code for f in out.fouls] == ["scratch"]
