@@ -5,6 +5,7 @@ own actions (`play_turn`), which refuse an illegal one."""
 from __future__ import annotations
 
 import math
+from collections import Counter
 from dataclasses import replace
 
 import numpy as np
@@ -12,9 +13,20 @@ import pytest
 
 from server.ai import Bot
 from server.ai.bot import HAND_FLOOR, RACK_BALLS, hand_budget
+from server.ai.geometry import pot_options
+from server.ai.levels import for_kind
 from server.ai.play import play_turn
+from server.ai.search import (
+    FEW_POTS,
+    FINE_SPEED_FACTORS,
+    FINE_TIPS,
+    LATE_SPEED_FACTORS,
+    LOOK_PAIRS,
+    TIPS,
+)
 from server.engine import MotionState, Table
 from server.rules import Game
+from server.rules.ruling import Ruling
 from server.rules.snooker_score import COLOUR
 
 SNOOKER = Table.snooker()
@@ -105,3 +117,49 @@ def test_ball_in_hand_on_a_fuller_table_than_a_pool_rack_searches_less() -> None
     assert hand_budget(3900, 21) == int(3900 * (16 / 21) ** 2) < 3900
     assert hand_budget(3900, 22) < hand_budget(3900, 21)
     assert hand_budget(550, 22) == 550 and hand_budget(3900, 40) == HAND_FLOOR
+
+
+def _reds_spread() -> Game:
+    """Mid-frame: eight reds spread over the middle of the table, the colours on their
+    spots, the cue ball between them; a red is on."""
+    game = Game.new("snooker", ("Ana", "Computer"), seed=1)
+    balls = game.balls.copy()
+    reds = {k: (1.2 + 0.27 * k, 0.25 + 0.18 * ((3 * k) % 8)) for k in range(1, 9)}
+    for ball in balls.ids.tolist():
+        if ball in reds:
+            balls = balls.with_ball(ball, reds[ball])
+        elif 1 <= ball <= 15:
+            row = balls.index(ball)
+            balls.states[row] = MotionState.POCKETED
+            balls.pockets[row] = 0
+    game.balls = balls.with_ball(0, (1.6, 0.7))
+    game.ball_in_hand = None
+    game.breaking = False
+    return game
+
+
+def test_at_snooker_the_pro_searches_every_pots_position_finely() -> None:
+    """A break runs for up to 36 pots, not a pool rack's 8: at snooker the pro gives every
+    pot the finer strokes and searches the next shot on the late grid even with many pots
+    on (`levels.for_kind`); the club keeps its usual strokes, and at pool the pro's level
+    is what it was."""
+    game = _reds_spread()
+    pro, club = Bot("pro"), Bot("club")
+    search = pro._search(game, 0)
+    assert search.level.fine_pots and search.level.deep_next
+    options = pot_options(SNOOKER, game.balls, search.targets(search.pos), search.plan_sigma())
+    assert len(options) > FEW_POTS
+    for bot, want in [
+        (pro, len(FINE_SPEED_FACTORS) * len(FINE_TIPS)),
+        (club, club.level.speeds * club.level.tips),
+    ]:
+        strokes = bot._search(game, 0).pot_candidates(game.balls, bot.level.pairs)
+        per_pot = Counter((c.target, c.pocket) for c in strokes if c.via == "direct")
+        assert set(per_pot.values()) == {want}, (bot.level.name, per_pot)
+    before = search.sims
+    search._next_shot(search.pos, Ruling(), game.balls)
+    looked = min(len(options), LOOK_PAIRS)
+    assert search.sims - before == looked * len(LATE_SPEED_FACTORS) * len(TIPS)
+    for kind in ("eight_ball", "nine_ball", "three_cushion"):
+        assert for_kind(pro.level, kind) == pro.level
+    assert for_kind(club.level, "snooker") == club.level
