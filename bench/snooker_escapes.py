@@ -11,8 +11,9 @@ WPBSA miss rule's test) and no ball touches another or a cushion. Each plan is p
 `--draws` times by the level's arm (`Bot.execute`) and judged by the rules: a stroke is
 legal when the red is hit first and there is no foul. Printed per level: the shares of
 legal strokes, of fouls and of misses called (WPBSA Section 3, Rule 14), and what the
-plans are, read from the exact stroke: off one cushion, off two or more, with a raised cue
-(jump, swerve or masse; "airborne" when the cue ball left the bed, a jump), or straight.
+plans are, read from the exact stroke: off one cushion, off two or more, a jump, a swerve
+or masse, or straight ("airborne": the cue ball left the bed, a hop, not necessarily over
+a ball).
 """
 
 from __future__ import annotations
@@ -26,7 +27,17 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from server.ai import Bot
-from server.engine import CUE, BallSet, EventKind, FlightKind, MotionState, Settled, Table, settle
+from server.engine import (
+    CUE,
+    BallSet,
+    EventKind,
+    FlightKind,
+    MotionState,
+    Settled,
+    Shot,
+    Table,
+    settle,
+)
 from server.rules import Game
 from server.rules.shotfacts import shot_facts
 from server.rules.snooker_score import COLOUR_IDS, NAMES
@@ -36,7 +47,7 @@ TABLE = Table.snooker()
 R = TABLE.ball_radius
 RED = 1
 LEVELS = ("amateur", "club", "pro")
-SHAPES = ("1 cushion", "2+ cushions", "raised cue", "straight")
+SHAPES = ("1 cushion", "2+ cushions", "jump", "swerve/masse", "straight")
 
 
 def snookered_table(rng: np.random.Generator) -> dict[int, tuple[float, float]]:
@@ -81,17 +92,18 @@ def set_up(placement: dict[int, tuple[float, float]]) -> Game:
     return game
 
 
-def shape(result: Settled, raised: bool) -> str:
-    """What an exact stroke is (`SHAPES`): by the cushions the cue ball met before its
-    first contact, or its raised cue."""
-    if raised:
-        return SHAPES[2]
+def shape(result: Settled, shot: Shot) -> str:
+    """What an exact stroke is (`SHAPES`): a raised cue with no side is a jump (straight
+    over the ball in the way), with side a swerve or masse; a level cue by the cushions
+    the cue ball met before its first contact."""
+    if shot.elevation > 0:
+        return SHAPES[2] if shot.tip[0] == 0 else SHAPES[3]
     cushions = 0
     for event in result.events:
         if CUE in event.ids and event.kind == EventKind.BALL:
             break
         cushions += CUE in event.ids and event.kind == EventKind.CUSHION
-    return SHAPES[0] if cushions == 1 else SHAPES[1] if cushions >= 2 else SHAPES[3]
+    return SHAPES[0] if cushions == 1 else SHAPES[1] if cushions >= 2 else SHAPES[4]
 
 
 @dataclass
@@ -118,7 +130,7 @@ def tally(bot: Bot, tables: list[Game], draws: int, seed: int) -> Tally:
         out.plan_s.append(time.process_time() - t0)
         assert shot is not None
         exact = settle(TABLE, game.balls, shot)
-        out.shapes[shape(exact, shot.elevation > 0)] += 1
+        out.shapes[shape(exact, shot)] += 1
         out.airborne += any(e.kind == FlightKind.LAND for e in exact.events)
         pos, on = game.position(), game.legal_targets()
         facts = shot_facts(game.balls, exact)
