@@ -3,6 +3,9 @@ crafted 9-ball tables where a ball sits on the straight line to the 1, further f
 cue ball than a jump reaches (`search.JUMP_REACH`), so only kicks and curves go round it.
 
     python -m bench.escapes [--layouts 20] [--seed 7200] [--draws 10]
+    python -m bench.escapes --kind snooker [--layouts 20] [--seed 7200] [--draws 10]
+
+With `--kind snooker` it measures the escapes from snookers instead (`snooker_escapes`).
 
 Each table is planned by the top level as it is and with its massé turned off; each plan
 is played `--draws` times by the level's arm (its noise) and counts as an escape when the
@@ -26,6 +29,8 @@ from server.ai.search import JUMP_REACH
 from server.engine import BallSet, MotionState, Table, simulate
 from server.rules import Game
 from server.rules.shotfacts import shot_facts
+
+from .snooker_escapes import report
 
 TABLE = Table.pool("9ft")
 R = TABLE.ball_radius
@@ -89,7 +94,11 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--layouts", type=int, default=20)
     parser.add_argument("--seed", type=int, default=7200)
     parser.add_argument("--draws", type=int, default=10)
+    parser.add_argument("--kind", choices=("nine_ball", "snooker"), default="nine_ball")
     args = parser.parse_args(argv)
+    if args.kind == "snooker":
+        report(args.layouts, args.seed, args.draws)
+        return 0
     rng = np.random.default_rng(args.seed)
     tables = [set_up(blocked_table(rng)) for _ in range(args.layouts)]
     with_curves = Bot(LEVELS[-1])
