@@ -104,6 +104,7 @@ class Newcomer:
             [x, y],
             timeout=30_000,
         )
+        self.strokes.append(f"placed in the D at ({x:.3f}, {y:.3f})")
 
     def nominate(self, ball: int) -> None:
         """On a colour: tap the colour to be played to nominate it."""
@@ -113,6 +114,7 @@ class Newcomer:
         wait_for(
             page, "(id) => window.__pool.state.match.frame.nominated === id", ball, timeout=30_000
         )
+        self.strokes.append(f"nominated {ball}")
 
     def play(self, view: dict) -> None:
         """One stroke: choose it from what is drawn, nominate if a colour is on, shoot."""
