@@ -99,17 +99,20 @@ def _track(
             return np.asarray(points[k] + chords[k] * (t - k * tick))
         return np.asarray(points[min(k, len(points) - 1)])
 
-    knots: list[tuple[float, np.ndarray]] = [(k * tick, points[k]) for k in range(full + 1)]
-    seen: set[int] = set()
+    times, knots, seen = [], [], set()
     for t in turns:
         k = int(t / tick)
         if t < end and k < full and k not in seen and t - k * tick > _SLACK:
             seen.add(k)
-            knots.append((t, at(t)))
+            times.append(t)
+            knots.append(at(t))
     if end - full * tick > _SLACK:
-        knots.append((end, at(end)))
-    knots.sort(key=lambda knot: knot[0])
-    return np.array([p for _, p in knots])
+        times.append(end)
+        knots.append(at(end))
+    if not knots:
+        return points[: full + 1]
+    order = np.argsort(np.concatenate([np.arange(full + 1) * tick, times]), kind="stable")
+    return np.vstack([points[: full + 1], knots])[order]
 
 
 def _nearest(track: np.ndarray, centres: np.ndarray) -> np.ndarray:
