@@ -41,7 +41,8 @@ class Level:
     round the blocker with a raised cue and side spin (`search.CURVES`); fine_pots: every
     pot gets the finer strokes (`search.FINE_SPEED_FACTORS`), not only when few are on;
     deep_next: the next-shot search always tries the late grid (`search.LATE_SPEED_FACTORS`).
-    The last two are set by `for_kind` (snooker), not by the table below.
+    The last two are set by `for_kind` (snooker), not by the table below, which also
+    turns `jumps` off at snooker.
     """
 
     name: str
@@ -106,7 +107,14 @@ def for_kind(level: Level, kind: str) -> Level:
     pool rack's 8 or 9, so the level that searches late-rack position (`late_strokes`)
     searches every pot's position so: the finer strokes on each pot and the late grid on
     the next shot. In the pro's self-play this lifted the mean highest break per frame from
-    46 to 61 (docs/ai.md, "Snooker"); a pool plan is unchanged."""
-    if kind == "snooker" and level.late_strokes:
-        return replace(level, fine_pots=True, deep_next=True)
-    return level
+    46 to 61 (docs/ai.md, "Snooker"); a pool plan is unchanged.
+
+    At snooker no level jumps: a jump shot is a foul there (WPBSA Section 2 "Jump Shot",
+    3.11 Penalty Values; the referee calls it, `rules.jumps`), so the search does not
+    spend simulations on strokes it would only reject. Swerves and masses stay: a
+    raised cue that goes round a ball, not over it, is legal."""
+    if kind != "snooker":
+        return level
+    if level.late_strokes:
+        level = replace(level, fine_pots=True, deep_next=True)
+    return replace(level, jumps=False)

@@ -16,6 +16,7 @@ LABELS = {
     "in_off": "in-off",
     "potted_not_on": "a ball not on potted",
     "miss": "a miss",
+    "jump_shot": "a jump shot",
 }
 
 
@@ -89,3 +90,10 @@ def in_off(name: str) -> Foul:
 
 def miss(name: str) -> Foul:
     return Foul("miss", f"{name} did not hit the ball on, open to a straight stroke: a miss.")
+
+
+def jump_shot(name: str, over: tuple[int, ...]) -> Foul:
+    """WPBSA Section 2 "Jump Shot" (the cue ball passed over an object ball before its
+    first contact), a foul under 3.11 Penalty Values."""
+    said = and_list(snooker_ball(b) for b in over)
+    return Foul("jump_shot", f"{name}'s cue ball jumped over {said}: a jump shot.")

@@ -348,7 +348,7 @@ class Game:
         cue = self.cue_ball
         if result.events and result.events[0].ids[0] != cue:
             raise IllegalActionError("wrong_cue_ball", "That is not your cue ball.")
-        facts = shot_facts(self.balls, result, cue)
+        facts = shot_facts(self.balls, result, cue, self.table.ball_radius)
         ruling = self.rules.judge(self.position(), facts)
         pocketed = facts.pocketed + ((CUE,) if facts.scratch and not facts.cue_off_table else ())
         if facts.pocketed:

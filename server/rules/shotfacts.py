@@ -4,6 +4,8 @@ A ball the engine put out of play is pocketed, or off the table (a jump that cle
 rail: its pocket is `OFF_TABLE`); the cue ball off the table is a scratch (WPA General
 Rules, "cue ball scratch or off the table").
 The struck ball is the cue ball (0) unless told (carom: the striker's white or yellow).
+Given the balls' radius, a played shot's facts also say which balls the cue ball jumped
+over before its first contact (`jumps.passed_over`; a `Settled` shot cannot tell).
 """
 
 from __future__ import annotations
@@ -12,6 +14,8 @@ from dataclasses import dataclass, field
 
 from server.engine import CUE, OFF_TABLE, BallSet, EventKind, MotionState, Settled, ShotResult
 from server.engine.results import EVENT_CODES
+
+from .jumps import passed_over
 
 # Kind codes of `contacts()` (read once: a shot's facts are read for every simulated shot).
 _BALL, _CUSHION, _JAW, _POCKET = (
@@ -36,6 +40,8 @@ class ShotFacts:
     cue_path: what the struck ball met, in order: a ball's id, or -1 for a cushion (carom).
     final: the table at rest after the shot, before the rules re-spot anything (not a
     fact compared: the facts of a settled and a simulated shot are equal).
+    jumped_over: object balls the cue ball passed over in the air before its first
+    contact (WPBSA Jump Shot); read only from a simulated shot's frames, so not compared.
     """
 
     first_contact: int | None
@@ -48,15 +54,19 @@ class ShotFacts:
     cue_off_table: bool = False
     cue_path: tuple[int, ...] = ()
     final: BallSet | None = field(default=None, compare=False, repr=False)
+    jumped_over: tuple[int, ...] = field(default=(), compare=False)
 
     @property
     def any_pocketed(self) -> bool:
         return bool(self.pocketed)
 
 
-def shot_facts(before: BallSet, result: ShotResult | Settled, cue: int = CUE) -> ShotFacts:
+def shot_facts(
+    before: BallSet, result: ShotResult | Settled, cue: int = CUE, radius: float | None = None
+) -> ShotFacts:
     """Facts of `result`, a shot played from the table `before` (its final table has
-    `before`'s rows, as the engine keeps them).
+    `before`'s rows, as the engine keeps them). With the balls' `radius`, a `ShotResult`'s
+    jumps are read too (`jumped_over`).
 
     Events give the order and the pockets; `result.final` is the authority on which balls
     dropped (a ball off in `final` but on in `before` dropped even if no event says so).
@@ -105,7 +115,16 @@ def shot_facts(before: BallSet, result: ShotResult | Settled, cue: int = CUE) ->
         cue_off_table=cue in flown,
         cue_path=tuple(path),
         final=final,
+        jumped_over=_jumped(before, result, cue, radius),
     )
+
+
+def _jumped(
+    before: BallSet, result: ShotResult | Settled, cue: int, radius: float | None
+) -> tuple[int, ...]:
+    if radius is None or not isinstance(result, ShotResult):
+        return ()
+    return passed_over(before, result, radius, cue)
 
 
 def _out_of_play(before: BallSet, final: BallSet) -> tuple[set[int], set[int]]:

@@ -2,9 +2,10 @@
 (the edition revised November 2019), judged from a position and a shot's facts. Rules are
 cited as "WPBSA s.r" (Section s, Rule r): Section 2 Definitions (2.9 In-hand, 2.11 Ball
 On, 2.12 Nominated Ball, 2.13 Free Ball, 2.14 Forced Off the Table, 2.15 Infringements,
-Fouls and Penalties, 2.17 Snookered), Section 3 The Game (3.2 Position of Balls, 3.3 Mode
-of Play, 3.4 End of Frame, Game or Match, 3.5 Playing from In-hand, 3.7 Spotting Colours,
-3.11 Penalty Values, 3.12 Snookered After a Foul, 3.13 Play Again, 3.14 Foul and a Miss),
+Fouls and Penalties, 2.17 Snookered, and "Jump Shot", cited by name: its number in this
+edition was not checked), Section 3 The Game (3.2 Position of Balls, 3.3 Mode of Play,
+3.4 End of Frame, Game or Match, 3.5 Playing from In-hand, 3.7 Spotting Colours, 3.11
+Penalty Values, 3.12 Snookered After a Foul, 3.13 Play Again, 3.14 Foul and a Miss),
 Section 4 The Players (4.1 Conduct).
 
 What the server judges, plainly:
@@ -19,6 +20,11 @@ What the server judges, plainly:
   a foul on a colour after a red with no colour nominated (none named, none hit first)
   costs 7 (3.11). A free ball hit first is the ball on and worth the ball on (2.13). The
   engine has no cue to touch a ball with: push strokes and touching a ball cannot happen.
+- a jump shot (Section 2 "Jump Shot", a foul under 3.11, worth the ball on, at least 4):
+  the cue ball passed over some part of an object ball before its first contact with a
+  ball (`jumps.passed_over`). Over a ball after that first contact is no jump shot (the
+  definition's exception); the cue ball that strikes a ball in the air and comes down on
+  its far side is not judged (the server reads no jump over the first ball touched).
 - after a foul the next player plays from where the balls lie or has the offender play
   again (WPBSA 3.13); if the foul leaves them snookered (2.17, `snooker_table`) they may
   take a free ball (3.12).
@@ -122,7 +128,9 @@ def foul_value(
 
 
 def fouls_of(pos: Position, score: FrameScore, facts: ShotFacts) -> tuple[list[Foul], list[int]]:
-    """Every foul of the shot (WPBSA 2.15, 3.11) and the balls potted that were not on."""
+    """Every foul of the shot (WPBSA 2.15, 3.11) and the balls potted that were not on. A
+    jump shot (Section 2 "Jump Shot") costs the value of the ball on (3.11): the ball
+    jumped over is not a ball involved."""
     name = pos.shooter
     wrong = [b for b in facts.pocketed if b not in allowed_pots(score, pos.on_table)]
     wrong += facts.off_table  # forced off the table (WPBSA 2.14), valued as involved (3.11)
@@ -132,6 +140,8 @@ def fouls_of(pos: Position, score: FrameScore, facts: ShotFacts) -> tuple[list[F
         found.append(fouls.no_ball_hit(name))
     elif first not in balls_on(score, pos.on_table):
         found.append(fouls.snooker_wrong_first(name, first, on_words(score)))
+    if facts.jumped_over:
+        found.append(fouls.jump_shot(name, facts.jumped_over))
     potted_wrong = [b for b in wrong if b in facts.pocketed]
     if potted_wrong:
         found.append(fouls.potted_not_on(name, potted_wrong))

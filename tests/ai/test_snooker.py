@@ -29,6 +29,8 @@ from server.rules import Game
 from server.rules.ruling import Ruling
 from server.rules.snooker_score import COLOUR
 
+from .conftest import set_table
+
 SNOOKER = Table.snooker()
 PINK = 20
 
@@ -163,3 +165,37 @@ def test_at_snooker_the_pro_searches_every_pots_position_finely() -> None:
     for kind in ("eight_ball", "nine_ball", "three_cushion"):
         assert for_kind(pro.level, kind) == pro.level
     assert for_kind(club.level, "snooker") == club.level
+
+
+def _red_behind_the_black() -> Game:
+    """A red straight ahead of the cue ball with the black 20 cm ahead, in the way."""
+    game = Game.new("snooker", ("Ana", "Computer"), seed=1)
+    balls = game.balls.copy()
+    mid = SNOOKER.width / 2
+    keep = {0: (1.0, mid), 21: (1.2, mid), 1: (2.0, mid)}
+    for ball in balls.ids.tolist():
+        if ball in keep:
+            balls = balls.with_ball(ball, keep[ball])
+        else:
+            row = balls.index(ball)
+            balls.states[row] = MotionState.POCKETED
+            balls.pockets[row] = 0
+    game.balls = balls
+    game.ball_in_hand = None
+    game.breaking = False
+    return game
+
+
+def test_at_snooker_no_level_jumps_but_the_pro_still_swerves(nine: Game) -> None:
+    """A jump shot is a foul at snooker (WPBSA Section 2 "Jump Shot", 3.11): no level
+    plans one there (`levels.for_kind`); swerves and masses stay. At 9-ball the same
+    bot jumps a ball in the way (`test_jumps.py`)."""
+    for name in Bot.LEVELS:
+        assert not for_kind(Bot(name).level, "snooker").jumps
+    game = _red_behind_the_black()
+    search = Bot("pro")._search(game, 0)
+    assert not search.level.jumps and search.level.masse
+    assert search.jump_candidates(game.balls) == []
+    assert search.curve_candidates(game.balls)
+    pool = set_table(nine, {0: (0.6, 0.6), 2: (0.8, 0.6), 1: (1.6, 0.6), 9: (2.2, 1.0)})
+    assert Bot("pro")._search(pool, 0).jump_candidates(pool.balls)

@@ -89,3 +89,16 @@ def test_a_real_jump_off_the_table_is_judged_a_scratch(nine: Game) -> None:
     assert [f.code for f in outcome.fouls] == ["no_contact", "scratch"]
     assert "left the table" in outcome.fouls[1].message
     assert outcome.ball_in_hand == ANYWHERE
+
+
+def test_a_jump_over_a_ball_is_no_foul_at_nine_ball(nine: Game) -> None:
+    # WPA General Rules: a jump with a raised cue is a legal stroke (snooker calls it a
+    # foul: `test_snooker_jump.py`). The cue ball clears the 2, 20 cm ahead, onto the 1.
+    nine_after_the_break(nine)
+    arrange(nine, {0: (0.5, 0.6), 2: (0.7, 0.6), 1: (2.0, 0.6)})
+    elevation = math.radians(40)
+    shot = Shot(0.0, 5.0, tip_seen_level((0.0, 0.0), elevation), elevation)
+    result = simulate(TABLE, nine.balls, shot)
+    assert result.first_contact() == 1
+    outcome = nine.apply(1, result)
+    assert [f.code for f in outcome.fouls] == []

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
-from server.engine import CUE, BallSet, Shot, Table, rack, settle, simulate
+from server.engine import CUE, BallSet, Shot, Table, rack, settle, simulate, tip_seen_level
 from server.rules.shotfacts import shot_facts
 
 from .helpers import TABLE, crafted, hit, pot, rail, straight_in
@@ -67,3 +67,20 @@ def test_settled_shots_give_the_facts_of_simulated_ones() -> None:
         assert facts == shot_facts(balls, simulated)
         seen.add((bool(facts.pocketed), facts.scratch, facts.first_contact is None))
     assert len(seen) >= 3  # the shots above do differ in what happened
+
+
+def test_a_jump_over_a_ball_is_read_from_the_frames_and_not_from_a_settled_shot() -> None:
+    """`jumped_over`: the balls the cue ball passed over before its first contact
+    (`rules.jumps`). Only a simulated shot's frames tell; the facts stay equal."""
+    table = Table.pool("9ft")
+    balls = BallSet.place({0: (0.5, 0.6), 2: (0.7, 0.6), 1: (2.0, 0.6)})
+    elevation = math.radians(40)
+    shot = Shot(0.0, 5.0, tip_seen_level((0.0, 0.0), elevation), elevation)
+    simulated = simulate(table, balls, shot)
+    facts = shot_facts(balls, simulated, radius=table.ball_radius)
+    assert facts.first_contact == 1 and facts.jumped_over == (2,)
+    assert shot_facts(balls, simulated).jumped_over == ()  # no radius, no reading
+    settled = shot_facts(balls, settle(table, balls, shot), radius=table.ball_radius)
+    assert settled.jumped_over == () and settled == facts
+    level = shot_facts(balls, simulate(table, balls, Shot(0.0, 5.0)), radius=table.ball_radius)
+    assert level.first_contact == 2 and level.jumped_over == ()
