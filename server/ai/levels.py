@@ -102,6 +102,9 @@ LEVELS: tuple[str, ...] = tuple(level.name for level in LEVEL_TABLE)
 BY_NAME: dict[str, Level] = {level.name: level for level in LEVEL_TABLE}
 
 
+SNOOKER_KINDS = ("snooker", "snooker_practice")
+
+
 def for_kind(level: Level, kind: str) -> Level:
     """`level` as it plays the game `kind`. A snooker break runs on for up to 36 pots, not a
     pool rack's 8 or 9, so the level that searches late-rack position (`late_strokes`)
@@ -112,8 +115,9 @@ def for_kind(level: Level, kind: str) -> Level:
     At snooker no level jumps: a jump shot is a foul there (WPBSA Section 2 "Jump Shot",
     3.11 Penalty Values; the referee calls it, `rules.jumps`), so the search does not
     spend simulations on strokes it would only reject. Swerves and masses stay: a
-    raised cue that goes round a ball, not over it, is legal."""
-    if kind != "snooker":
+    raised cue that goes round a ball, not over it, is legal. The snooker practice table
+    is planned the same way: its hints show what a frame allows."""
+    if kind not in SNOOKER_KINDS:
         return level
     if level.late_strokes:
         level = replace(level, fine_pots=True, deep_next=True)

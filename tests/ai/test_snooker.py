@@ -165,6 +165,7 @@ def test_at_snooker_the_pro_searches_every_pots_position_finely() -> None:
     for kind in ("eight_ball", "nine_ball", "three_cushion"):
         assert for_kind(pro.level, kind) == pro.level
     assert for_kind(club.level, "snooker") == club.level
+    assert for_kind(pro.level, "snooker_practice") == for_kind(pro.level, "snooker")
 
 
 def _red_behind_the_black() -> Game:
