@@ -36,10 +36,11 @@ SAFETY_SPOT_DISTANCES = (0.3, 0.15, 0.5)  # m from the ball, the first tried fir
 SAFETY_SPOT_DIRECTIONS = 24
 ACCEPT_ABOVE = 0.5  # take a table (push out, illegal break) with a pot at least this likely
 SAY_POT_FROM = 0.5  # a safety or kick that pockets at least this often is reported as a pot
-# Ball in hand on a table with more balls than a pool rack (snooker's 22): each simulation
-# costs more (more balls to collide, the pack), so the turn searches a smaller share of
-# the budget, by (RACK_BALLS / balls on the table) squared: the break-off's plan fits the
-# plan-time goal (docs/ai.md, "Snooker"). A pool table never has more, so its plans are
+# A turn on a table with more balls than a pool rack (snooker's 22, the reds not yet
+# split): each simulation costs more (more balls to collide, the pack), so the turn
+# searches a smaller share of the budget, by (RACK_BALLS / balls on the table) squared:
+# the break-off's and the first visits' plans fit the plan-time goal (docs/ai.md,
+# "Snooker"). A pool table never has more, so its plans are
 # unchanged. A budget of `HAND_FLOOR` or less is kept whole: the levels below the pro
 # plan quickly anyway, and with half theirs the beginner's break-off found no fair hit.
 RACK_BALLS = 16
@@ -183,8 +184,8 @@ class Bot:
         if game.carom is not None:
             return self._carom(game, seat)
         search = self._search(game, seat)
-        search.limit = self.level.budget
         balls = game.balls
+        search.limit = hand_budget(self.level.budget, len(balls.on_table_ids()))
         if game.ball_in_hand is not None:
             turn = self._with_hand(game, search, balls)
         elif not balls.on_table[balls.index(CUE)]:
@@ -426,8 +427,8 @@ class Bot:
 
 
 def hand_budget(budget: int, on_table: int) -> int:
-    """The simulations a ball-in-hand turn may spend with `on_table` balls on the table
-    (the cue ball counted when the rules keep it there, as at the break-off): the whole
+    """The simulations a turn may spend with `on_table` balls on the table (the cue ball
+    counted when the rules keep it there, as at the break-off): the whole
     budget up to a pool rack's `RACK_BALLS`, less beyond but not below `HAND_FLOOR`
     (their comment)."""
     if on_table <= RACK_BALLS:

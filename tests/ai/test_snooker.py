@@ -200,3 +200,18 @@ def test_at_snooker_no_level_jumps_but_the_pro_still_swerves(nine: Game) -> None
     assert search.curve_candidates(game.balls)
     pool = set_table(nine, {0: (0.6, 0.6), 2: (0.8, 0.6), 1: (1.6, 0.6), 9: (2.2, 1.0)})
     assert Bot("pro")._search(pool, 0).jump_candidates(pool.balls)
+
+
+def test_a_turn_with_every_ball_still_on_searches_less_too() -> None:
+    """After the break-off (played with the arm's error, a fixed draw), with all 22 balls
+    on and the cue ball where it stopped, the pro's turn spends the same smaller share as
+    a ball-in-hand turn would: each shot into the pack costs more (the plan-time goal).
+    Given the whole budget, this turn spends 3,535 simulations."""
+    game = Game.new("snooker", ("Ana", "Computer"), breaker=1, seed=117)
+    bots = [Bot("pro", seed=234), Bot("pro", seed=235)]
+    play_turn(game, 1, bots[1].plan(game, 1), bots[1], np.random.default_rng(117))
+    assert game.ball_in_hand is None and len(game.balls.on_table_ids()) == 22
+    share = hand_budget(bots[0].level.budget, 22)
+    assert RACK_BALLS < 22 and share < bots[0].level.budget
+    bots[0].plan(game, 0)
+    assert share // 2 < bots[0].last_sims <= share
