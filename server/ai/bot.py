@@ -185,7 +185,10 @@ class Bot:
             return self._carom(game, seat)
         search = self._search(game, seat)
         balls = game.balls
-        search.limit = hand_budget(self.level.budget, len(balls.on_table_ids()))
+        on_table = len(balls.on_table_ids())
+        search.limit = hand_budget(self.level.budget, on_table)
+        # The levels with a budget of `HAND_FLOOR` or less plan quickly anyway.
+        search.charge_events = on_table > RACK_BALLS and self.level.budget > HAND_FLOOR
         if game.ball_in_hand is not None:
             turn = self._with_hand(game, search, balls)
         elif not balls.on_table[balls.index(CUE)]:
