@@ -17,14 +17,16 @@ from server.ai.geometry import pot_options
 from server.ai.levels import for_kind
 from server.ai.play import play_turn
 from server.ai.search import (
+    EVENTS_PER_SIM,
     FEW_POTS,
     FINE_SPEED_FACTORS,
     FINE_TIPS,
+    FREE_EVENTS,
     LATE_SPEED_FACTORS,
     LOOK_PAIRS,
     TIPS,
 )
-from server.engine import MotionState, Table
+from server.engine import MotionState, Shot, Table
 from server.rules import Game
 from server.rules.ruling import Ruling
 from server.rules.snooker_score import COLOUR
@@ -215,3 +217,23 @@ def test_a_turn_with_every_ball_still_on_searches_less_too() -> None:
     assert RACK_BALLS < 22 and share < bots[0].level.budget
     bots[0].plan(game, 0)
     assert share // 2 < bots[0].last_sims <= share
+
+
+def test_a_cascade_in_the_pack_is_charged_by_its_events() -> None:
+    """A shot into the pack after a seeded break-off sets off over a thousand contacts
+    among touching reds: on a table fuller than a pool rack it costs the pro's search as
+    many simulations as its events beyond `FREE_EVENTS`, and the budget counts as spent
+    once reached; uncharged, it costs one."""
+    game = Game.new("snooker", ("a", "b"), breaker=1, seed=195)
+    pro = Bot("pro", seed=391)
+    play_turn(game, 1, pro.plan(game, 1), pro, np.random.default_rng(195))
+    assert len(game.balls.on_table_ids()) == 22 and game.ball_in_hand is None
+    into_the_pack = Shot(0.6880164072447013, 1.8)
+    for charged in (True, False):
+        search = Bot("pro", seed=390)._search(game, game.turn)
+        search.charge_events, search.limit = charged, 100
+        _, result = search._simulate(game.balls, into_the_pack)
+        events = len(result.rows)
+        assert events > 1000
+        want = 1 + (events - FREE_EVENTS) // EVENTS_PER_SIM if charged else 1
+        assert search.sims == want and search.spent() == charged
