@@ -109,8 +109,8 @@ def for_kind(level: Level, kind: str) -> Level:
     """`level` as it plays the game `kind`. A snooker break runs on for up to 36 pots, not a
     pool rack's 8 or 9, so the level that searches late-rack position (`late_strokes`)
     searches every pot's position so: the finer strokes on each pot and the late grid on
-    the next shot. In the pro's self-play this lifted the mean highest break per frame from
-    46 to 61 (docs/ai.md, "Snooker"); a pool plan is unchanged.
+    the next shot: longer breaks in the pro's self-play (docs/ai.md, "Snooker"); a pool
+    plan is unchanged.
 
     At snooker no level jumps: a jump shot is a foul there (WPBSA Section 2 "Jump Shot",
     3.11 Penalty Values; the referee calls it, `rules.jumps`), so the search does not
