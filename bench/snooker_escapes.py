@@ -29,10 +29,8 @@ import numpy as np
 from server.ai import Bot
 from server.engine import (
     CUE,
-    BallSet,
     EventKind,
     FlightKind,
-    MotionState,
     Settled,
     Shot,
     Table,
@@ -79,14 +77,7 @@ def _fits(placement: dict[int, tuple[float, float]]) -> bool:
 def set_up(placement: dict[int, tuple[float, float]]) -> Game:
     """A snooker frame with exactly `placement` on the table, a red on, seat 0 to play."""
     game = Game.new("snooker", ["a", "b"], seed=3)
-    balls: BallSet = game.balls.copy()
-    for ball in balls.ids.tolist():
-        if ball in placement:
-            balls = balls.with_ball(ball, placement[ball])
-        else:
-            row = balls.index(ball)
-            balls.states[row] = MotionState.POCKETED
-            balls.pockets[row] = 0
+    balls = game.balls.with_only(placement)
     game.balls, game.ball_in_hand = balls, None
     game.score = replace(game.score, on="red")
     return game

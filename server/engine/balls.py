@@ -229,6 +229,19 @@ class BallSet:
         out.heights[row] = 0.0
         return out
 
+    def with_only(self, placement: Mapping[int, tuple[float, float]]) -> BallSet:
+        """A copy with exactly the balls of `placement` at rest on the table there and every
+        other ball pocketed (in pocket 0): a crafted position for a test or a benchmark."""
+        out = self.copy()
+        for ball in out.ids.tolist():
+            if ball in placement:
+                out = out.with_ball(ball, placement[ball])
+            else:
+                row = out.index(ball)
+                out.states[row] = MotionState.POCKETED
+                out.pockets[row] = 0
+        return out
+
     def kinetic_energy(self, mass: float, radius: float) -> float:
         """Translational (the vertical speed of a flying ball too) plus rotational kinetic
         energy of the balls on the table (J)."""

@@ -26,7 +26,7 @@ from server.ai.search import (
     LOOK_PAIRS,
     TIPS,
 )
-from server.engine import MotionState, Shot, Table
+from server.engine import Shot, Table
 from server.rules import Game
 from server.rules.ruling import Ruling
 from server.rules.snooker_score import COLOUR
@@ -58,15 +58,8 @@ def test_every_level_breaks_off_from_the_d_and_plays_the_ball_on(level: str) -> 
 def _pink_on_the_lip() -> Game:
     """Only the pink near a corner pocket and the cue ball on its line, on a colour."""
     game = Game.new("snooker", ("Ana", "Computer"), seed=1)
-    balls = game.balls.copy()
     keep = {0: (0.55, 0.45), PINK: (0.2, 0.2)}
-    for ball in balls.ids.tolist():
-        if ball in keep:
-            balls = balls.with_ball(ball, keep[ball])
-        else:
-            row = balls.index(ball)
-            balls.states[row] = MotionState.POCKETED
-            balls.pockets[row] = 0
+    balls = game.balls.with_only(keep)
     game.balls = balls
     game.ball_in_hand = None
     game.score = replace(game.score, on=COLOUR)  # type: ignore[arg-type]
@@ -84,15 +77,8 @@ def test_the_pro_pots_the_colour_it_nominates() -> None:
 def test_the_computer_takes_a_free_ball() -> None:
     mid = SNOOKER.width / 2
     game = Game.new("snooker", ("Ana", "Computer"), seed=1)
-    balls = game.balls.copy()
     keep = {0: (1.0, mid), 1: (2.0, mid), 19: (1.5, mid), 21: SNOOKER.spots["black"]}
-    for ball in balls.ids.tolist():
-        if ball in keep:
-            balls = balls.with_ball(ball, keep[ball])
-        else:
-            row = balls.index(ball)
-            balls.states[row] = MotionState.POCKETED
-            balls.pockets[row] = 0
+    balls = game.balls.with_only(keep)
     game.balls, game.ball_in_hand = balls, None
     angle = math.pi / 2  # straight at the side cushion: no ball hit
     from server.engine import Shot, simulate
@@ -127,16 +113,9 @@ def _reds_spread() -> Game:
     """Mid-frame: eight reds spread over the middle of the table, the colours on their
     spots, the cue ball between them; a red is on."""
     game = Game.new("snooker", ("Ana", "Computer"), seed=1)
-    balls = game.balls.copy()
     reds = {k: (1.2 + 0.27 * k, 0.25 + 0.18 * ((3 * k) % 8)) for k in range(1, 9)}
-    for ball in balls.ids.tolist():
-        if ball in reds:
-            balls = balls.with_ball(ball, reds[ball])
-        elif 1 <= ball <= 15:
-            row = balls.index(ball)
-            balls.states[row] = MotionState.POCKETED
-            balls.pockets[row] = 0
-    game.balls = balls.with_ball(0, (1.6, 0.7))
+    colours = {b: game.balls.position_of(b) for b in range(16, 22)}
+    game.balls = game.balls.with_only({0: (1.6, 0.7), **reds, **colours})
     game.ball_in_hand = None
     game.breaking = False
     return game
@@ -173,16 +152,9 @@ def test_at_snooker_the_pro_searches_every_pots_position_finely() -> None:
 def _red_behind_the_black() -> Game:
     """A red straight ahead of the cue ball with the black 20 cm ahead, in the way."""
     game = Game.new("snooker", ("Ana", "Computer"), seed=1)
-    balls = game.balls.copy()
     mid = SNOOKER.width / 2
     keep = {0: (1.0, mid), 21: (1.2, mid), 1: (2.0, mid)}
-    for ball in balls.ids.tolist():
-        if ball in keep:
-            balls = balls.with_ball(ball, keep[ball])
-        else:
-            row = balls.index(ball)
-            balls.states[row] = MotionState.POCKETED
-            balls.pockets[row] = 0
+    balls = game.balls.with_only(keep)
     game.balls = balls
     game.ball_in_hand = None
     game.breaking = False

@@ -18,7 +18,7 @@ import numpy as np
 
 from server.ai import Bot
 from server.ai.play import play_turn
-from server.engine import CUE, BallSet, EventKind, MotionState, ShotResult, Table
+from server.engine import CUE, BallSet, EventKind, ShotResult, Table
 from server.rules import Game
 from server.rules.snooker_table import ANY_PART, _corridor_clear, open_path
 
@@ -48,14 +48,7 @@ def snooker_table(placement: dict[int, tuple[float, float]], on: str) -> Game:
     """A snooker frame with exactly `placement` on the table, seat 0 to play, `on` the
     ball on ("red", or a colour's name once the reds are gone)."""
     game = Game.new("snooker", ("Ana", "Computer"), seed=1)
-    balls: BallSet = game.balls.copy()
-    for ball in balls.ids.tolist():
-        if ball in placement:
-            balls = balls.with_ball(ball, placement[ball])
-        else:
-            row = balls.index(ball)
-            balls.states[row] = MotionState.POCKETED
-            balls.pockets[row] = 0
+    balls = game.balls.with_only(placement)
     game.balls, game.ball_in_hand = balls, None
     game.score = replace(game.score, on=on)
     return game

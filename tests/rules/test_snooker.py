@@ -9,7 +9,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from server.engine import MotionState, Table
+from server.engine import Table
 from server.rules import Game, IllegalActionError, Match
 from server.rules.snooker_score import COLOUR, FrameScore, remaining, snookers_required
 from server.rules.snooker_table import (
@@ -31,14 +31,7 @@ def frame(placement: dict[int, tuple[float, float]], **score: object) -> Game:
     """A snooker frame with only the balls of `placement` on the table (at those
     points), Ana to play from where the cue ball lies, the score as given."""
     game = Game.new("snooker", ("Ana", "Ben"))
-    balls = game.balls.copy()
-    for ball in balls.ids.tolist():
-        if ball in placement:
-            balls = balls.with_ball(ball, placement[ball])
-        else:
-            row = balls.index(ball)
-            balls.states[row] = MotionState.POCKETED
-            balls.pockets[row] = 0
+    balls = game.balls.with_only(placement)
     game.balls = balls
     game.ball_in_hand = None
     assert game.score is not None
