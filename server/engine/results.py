@@ -135,11 +135,11 @@ class ShotResult:
             for e in self.events
         ]
 
-    def first_contact(self) -> int | None:
-        """Id of the first ball the cue ball touched, or None."""
+    def first_contact(self, cue: int = 0) -> int | None:
+        """Id of the first ball the cue ball (`cue`) touched, or None."""
         for e in self.events:
-            if e.kind == EventKind.BALL and 0 in e.ids:
-                return next(i for i in e.ids if i != 0)
+            if e.kind == EventKind.BALL and cue in e.ids:
+                return next(i for i in e.ids if i != cue)
         return None
 
     def pocketed(self) -> list[int]:

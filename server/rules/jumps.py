@@ -43,7 +43,7 @@ def passed_over(
     track = _track(before.positions[row], frames.positions[:, row], frames.tick, turns, end)
     if len(track) < 2:
         return ()
-    first = _first_contact(result, cue)
+    first = result.first_contact(cue)
     others = [
         r
         for r, ball in enumerate(before.ids.tolist())
@@ -54,13 +54,6 @@ def passed_over(
     near = _nearest(track, before.positions[others])
     over = near < 2 * radius - MARGIN
     return tuple(int(before.ids[r]) for r, hit in zip(others, over.tolist(), strict=True) if hit)
-
-
-def _first_contact(result: ShotResult, cue: int) -> int | None:
-    for e in result.events:
-        if e.kind == EventKind.BALL and cue in e.ids:
-            return next(i for i in e.ids if i != cue)
-    return None
 
 
 def _cue_events(result: ShotResult, cue: int, duration: float) -> tuple[list[float], float]:
